@@ -25,6 +25,7 @@
 
 #include <cmath>
 
+#include "sim/dynamics/damped_gyroscopic_flow.hpp"
 #include "sim/models/base_motion.hpp"
 
 namespace gyrostab::models {
@@ -111,13 +112,13 @@ class GimbalGyro {
   }
   void project(State& /*x*/) const {}
 
-  // The fast linear gyroscopic coupling at the current β: α'' ∋ -a β', β'' ∋ +b α' with
-  // a = H cosβ / I(β), b = H cosβ / B; its frequency sqrt(ab) = H cosβ / sqrt(I(β) B) is the nutation (4.65).
-  void gyroscopic_coupling(const State& x, double& a, double& b) const {
+  // The fast linear part at the current β: α'' ∋ -a β' - p α', β'' ∋ +b α' - q β' with
+  // a = H cosβ/I(β), b = H cosβ/B, p = d1/I(β), q = d2/B; sqrt(ab) = H cosβ/sqrt(I(β) B) is the nutation
+  // (4.65), (p + q)/2 its viscous decay rate (11.3).
+  dynamics::GyroscopicPair gyroscopic_pair(const State& x) const {
     const double sb = std::sin(x[1]), cb = std::cos(x[1]);
     const double M11 = p_.AA + I1_ * cb * cb + I3_ * sb * sb;
-    a = x[4] * cb / M11;
-    b = x[4] * cb / I2_;
+    return {x[4] * cb / M11, x[4] * cb / I2_, p_.d1 / M11, p_.d2 / I2_};
   }
 
   // Energy of the gimbals (the rotor's spin energy H²/2C^R is constant and left out) on a base at rest;

@@ -1,0 +1,184 @@
+// Gyroscopic ship roll damper (Schlick type): ship roll φ coupled to the precession β of a pendulous gyro
+// case, with large-angle terms, hard end stops of the precession angle, a viscous precession brake and a
+// torque input on the precession axis (the active precession control of the firmware).
+//
+// Book: Magnus §14.2 (digest gyro-devices.md §3.2), equations (14.8)-(14.18). Small angles, (14.8):
+//   A φ'' + d1 φ' + c φ + H β' = E(t),        B β'' + d2 β' + q β − H φ' = 0
+// Geometry (Fig. 14.3): the case G pivots on the hull about axis 2, parallel to the ship's transverse axis;
+// the rotor axis 3 is vertical at β = 0 and the case's centre of mass lies below axis 2 (q > 0, statically
+// stable, which (14.8) needs); the ship rolls by φ about its longitudinal axis 1. This is the two-gimbal
+// gyro of (10.4) with the hull as the outer gimbal, so the large-angle equations implemented are
+//   I(β) φ'' − Q sin2β φ'β' + H cosβ β' = E − d1 φ' − c sinφ (1 + w tan²φ) + q sinφ (1 − cosβ)
+//   B β'' + Q sinβ cosβ φ'² − H cosβ φ'   = M2 − d2 β' − q cosφ sinβ + M_stop(β, β')
+// with I(β) = A − Q sin²β. Large-angle terms, each reducing to (14.8) at first order:
+//   - gyroscopic coupling H cosβ in both equations (the rotor axis leaves the vertical by β; the component
+//     of H along the roll axis is H sinβ), as in (10.4) and the servo gyro (14.41);
+//   - inertia terms of the case and rotor, Q = A^R + A^J − C^J as in (10.4) (zero for a case whose inertia
+//     about the rotor axis equals that of case + rotor about the roll direction);
+//   - righting moment c·GZ(φ)/GM with the wall-sided righting arm GZ = sinφ (GM + ½ BM tan²φ), w = BM/(2GM)
+//     (w = 0: constant metacentric height, GZ = GM sinφ; the wall-sided form holds until the deck edge
+//     immerses or the bilge emerges, typically |φ| ≲ 20-25°);
+//   - pendulous moment of the case −q cosφ sinβ (its centre of mass at depth s below axis 2, q = G s), and
+//     its share of the roll moment q sinφ (1 − cosβ) (c is the whole ship's stiffness at β = 0, so only the
+//     change with β appears). The potential is V = (c − q)(1 − cosφ) + c w (secφ + cosφ − 2) + q (1 − cosφ cosβ).
+// End stops at |β| = beta_stop: a stiff one-sided spring-damper (Kelvin-Voigt, force clipped at zero so it
+// never pulls), M_stop = −sgn β · max(0, k_s δ + d_s sgn β · β'), δ = |β| − beta_stop > 0, with
+// k_s = B ω_s², d_s = 2 ζ_s B ω_s (ω_s = stop_frequency, ζ_s = stop_damping_ratio). Chosen over an inelastic
+// impact because the integrators are fixed-step without event location: a velocity reset in project() would
+// act only at step ends (stages 2-4 of RK4 would not see the stop, the penetration and the lost energy would
+// depend on h), whereas the spring-damper is part of the vector field, converges at the integrator's order
+// between contact events and gives the stop load as a signal. ζ_s = 1 gives a coefficient of restitution
+// of exactly e^-2 ≈ 0.135 (contact ends when the clipped force reaches zero at ω_s t = 2), nearly
+// inelastic. The stop adds, while in contact, a mode λ = −ω_s (ζ_s ± sqrt(ζ_s² − 1)) (the gyroscopic
+// H²/(AB) shifts ω_s² by < 1e-3 for the defaults): RK4 needs h·ω_s (ζ_s + sqrt(ζ_s² − 1)) < 2.78 to be stable
+// and ≲ 0.3 to be accurate; the defaults (100 rad/s, ζ_s = 1) give h ω_s = 0.1 at the 1 ms controller tick,
+// penetration H φ'/k_s ≈ 2e-3 rad at φ' = 0.3 rad/s. A linearisation at β = 0 (step_validation.hpp) does not
+// see this mode: `stop_mode_rate()` returns its largest |λ| for the caller's step check.
+// Locked (`locked` = true): the case is fixed to the hull at its initial β, β' is ignored and the ship rolls
+// alone, I(β0) φ'' + d1 φ' + restoring(φ, β0) = E: the unstabilized ship of (14.15) for comparison.
+//
+// State x = [φ (rad), β (rad), φ' (rad/s), β' (rad/s)].
+// Parameters (book symbols, SI): A roll inertia of ship + installation at β = 0 [kg m²]; c = m g GM roll
+// stiffness of the whole ship at β = 0 [N m/rad]; d1 roll damping [N m s/rad]; w = BM/(2 GM) [-];
+// B case + rotor inertia about the case axis 2 [kg m²]; Q (see above) [kg m²]; q = G s pendulous stiffness of
+// the case [N m/rad]; d2 viscous precession brake [N m s/rad]; H rotor spin momentum [N m s];
+// beta_stop [rad]; stop_frequency ω_s [rad/s]; stop_damping_ratio ζ_s [-].
+// Inputs (zero-order hold, set by the caller each tick): E wave moment on the roll axis [N m] ((14.9): E0 cos ωt
+// or an irregular sea); M2 torque on the precession axis from the active control [N m], positive about axis 2.
+// Assumptions: rigid hull rolling about a fixed longitudinal axis (no pitch, yaw, heave or sway: the yaw
+// moment H sinβ β' and the pitch reactions of the gyro go into the hull and are not modelled); roll
+// damping linear; case axis on the roll axis (the pivot's translational acceleration is neglected); rotor
+// spin constant (H fixed: no spin motor torque); the sea acts only through E(t).
+// Defaults: the digest's constructed ship (2000 t, GM 0.6 m, §3.2/§9.2) with the minimax brake d2 = 4.53e4.
+// Oracles: tests/oracle/ship_roll_damper_test.cpp — steady amplitudes vs (14.11), the invariant points
+// (14.18), the minimax d2, the locked ship (14.15), energy conservation with the large-angle terms and the
+// stops, and the stop's restitution e^-2.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <numbers>
+
+namespace gyrostab::models {
+
+struct ShipRollDamperParams {
+  double A{3.2e7};          // roll inertia, ship + installation, β = 0 [kg m²]
+  double c{1.1772e7};       // roll stiffness m g GM, whole ship at β = 0 [N m/rad]
+  double d1{0.0};           // roll damping [N m s/rad]
+  double w{0.0};            // wall-sided coefficient BM/(2 GM) [-]
+  double B{1.5e4};          // case + rotor about the case axis 2 [kg m²]
+  double Q{0.0};            // A^R + A^J − C^J of (10.4): I(β) = A − Q sin²β [kg m²]
+  double q{1350.0};         // pendulous stiffness of the case G s [N m/rad]
+  double d2{4.53e4};        // viscous precession brake [N m s/rad]
+  double H{1.018e6};        // rotor spin momentum [N m s]
+  double beta_stop{1.2217}; // precession end stops ±70° [rad]
+  double stop_frequency{100.0};   // ω_s: k_s = B ω_s² [rad/s]
+  double stop_damping_ratio{1.0}; // ζ_s: d_s = 2 ζ_s B ω_s [-]
+  bool locked{false};       // case locked to the hull at its initial β (unstabilized ship)
+
+  // nullptr if the parameters are physically possible, else the reason (for scene validation).
+  const char* invalid_reason() const {
+    if (!(A > 0.0)) return "A (roll inertia) must be > 0";
+    if (!(B > 0.0)) return "B (case inertia) must be > 0";
+    if (!(A - Q > 0.0) || !(A > 0.0)) return "A - Q must be > 0 (roll inertia I(beta) = A - Q sin^2 beta)";
+    if (!(c > 0.0)) return "c (roll stiffness m g GM) must be > 0";
+    if (!(q >= 0.0)) return "q must be >= 0 (case pendulous: centre of mass below axis 2, (14.8))";
+    if (!(d1 >= 0.0) || !(d2 >= 0.0)) return "d1, d2 must be >= 0";
+    if (!(w >= 0.0)) return "w = BM/(2 GM) must be >= 0";
+    if (!(H >= 0.0)) return "H must be >= 0";
+    if (!(beta_stop > 0.0 && beta_stop < 0.5 * std::numbers::pi)) return "beta_stop must be in (0, pi/2)";
+    if (!(stop_frequency > 0.0)) return "stop_frequency must be > 0";
+    if (!(stop_damping_ratio >= 0.0)) return "stop_damping_ratio must be >= 0";
+    return nullptr;
+  }
+};
+
+struct ShipRollDamperInputs {
+  double E{0.0};   // wave moment on the roll axis [N m]
+  double M2{0.0};  // torque on the precession axis 2 (active control) [N m]
+};
+
+class ShipRollDamper {
+ public:
+  static constexpr int kStateSize = 4;
+  using State = Eigen::Matrix<double, 4, 1>;
+  static constexpr const char* kName = "ship-roll-damper";
+
+  explicit ShipRollDamper(const ShipRollDamperParams& p = {})
+      : p_(p),
+        k_stop_(p.B * p.stop_frequency * p.stop_frequency),
+        d_stop_(2.0 * p.stop_damping_ratio * p.B * p.stop_frequency) {}
+
+  ShipRollDamperInputs inputs{};  // held between steps
+
+  const ShipRollDamperParams& params() const { return p_; }
+
+  static State make_state(double phi, double beta, double phi_rate, double beta_rate) {
+    State x;
+    x << phi, beta, phi_rate, beta_rate;
+    return x;
+  }
+
+  void derivative(double /*t*/, const State& x, State& dx) const {
+    const double sp = std::sin(x[0]), cp = std::cos(x[0]);
+    const double sb = std::sin(x[1]), cb = std::cos(x[1]);
+    const double u = x[2], v = x[3];
+    const double inertia = p_.A - p_.Q * sb * sb;
+    double roll = inputs.E - p_.d1 * u - righting_moment(sp, cp) + p_.q * sp * (1.0 - cb);
+    dx[0] = u;
+    if (p_.locked) {
+      dx[1] = 0.0;
+      dx[2] = roll / inertia;
+      dx[3] = 0.0;
+      return;
+    }
+    roll += 2.0 * p_.Q * sb * cb * u * v - p_.H * cb * v;
+    const double precession = inputs.M2 - p_.d2 * v - p_.q * cp * sb + p_.H * cb * u - p_.Q * sb * cb * u * u +
+                              stop_torque(x[1], v);
+    dx[1] = v;
+    dx[2] = roll / inertia;
+    dx[3] = precession / p_.B;
+  }
+  void project(State& /*x*/) const {}
+
+  // Torque of the end stops on the case [N m] (zero off the stops).
+  double stop_torque(double beta, double beta_rate) const {
+    const double s = beta >= 0.0 ? 1.0 : -1.0;
+    const double penetration = s * beta - p_.beta_stop;
+    if (penetration <= 0.0) return 0.0;
+    const double force = k_stop_ * penetration + d_stop_ * s * beta_rate;
+    return force > 0.0 ? -s * force : 0.0;
+  }
+  // Largest |λ| of the stop mode while in contact [1/s]: ω_s (ζ_s + sqrt(ζ_s² − 1)) if ζ_s ≥ 1, else ω_s.
+  double stop_mode_rate() const {
+    const double z = p_.stop_damping_ratio;
+    return p_.stop_frequency * (z >= 1.0 ? z + std::sqrt(z * z - 1.0) : 1.0);
+  }
+
+  // Righting moment of the hull c GZ(φ)/GM [N m] (positive restores a positive φ).
+  double righting_moment(double phi) const { return righting_moment(std::sin(phi), std::cos(phi)); }
+
+  // Mechanical energy [J]: ½ I(β) φ'² + ½ B β'² + V(φ, β) + ½ k_s δ². Without E, M2, damping (d1, d2, ζ_s)
+  // it is conserved (the gyroscopic terms do no work). Locked: the case's kinetic energy is left out.
+  double energy(const State& x) const {
+    const double sp = std::sin(x[0]), cp = std::cos(x[0]), sb = std::sin(x[1]), cb = std::cos(x[1]);
+    double V = (p_.c - p_.q) * (1.0 - cp) + p_.q * (1.0 - cp * cb);
+    if (p_.w != 0.0) V += p_.c * p_.w * (1.0 / cp + cp - 2.0);
+    const double penetration = std::abs(x[1]) - p_.beta_stop;
+    if (penetration > 0.0) V += 0.5 * k_stop_ * penetration * penetration;
+    const double T_case = p_.locked ? 0.0 : 0.5 * p_.B * x[3] * x[3];
+    return 0.5 * (p_.A - p_.Q * sb * sb) * x[2] * x[2] + T_case + V;
+  }
+
+ private:
+  double righting_moment(double sp, double cp) const {
+    if (p_.w == 0.0) return p_.c * sp;
+    const double t = sp / cp;
+    return p_.c * sp * (1.0 + p_.w * t * t);
+  }
+
+  ShipRollDamperParams p_;
+  double k_stop_, d_stop_;
+};
+
+}  // namespace gyrostab::models

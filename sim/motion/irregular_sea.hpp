@@ -1,0 +1,206 @@
+// Irregular long-crested sea synthesized from a wave spectrum (wave_spectrum.hpp) as a fixed-capacity sum of
+// N ≤ MaxComponents harmonics, passed through a linear transfer (wave_transfer.hpp): the irregular counterpart of
+// Magnus's wave moment E(t) = E0 cos ωt (14.9) that drives the ship roll damper (14.8).
+//
+//   y(t) = Σᵢ bᵢ cos(ωᵢ t + ψᵢ),   ẏ(t) = −Σᵢ ωᵢ bᵢ sin(ωᵢ t + ψᵢ)
+//   band [ω_lo, ω_hi] cut into N equal bins of width Δω; component i:
+//     ωᵢ = centre of bin i + jitter·(u₁ − ½)·Δω          (u₁ uniform: breaks the 2π/Δω repeat period)
+//     aᵢ = √(2 ∫_bin S dω)                                (elevation amplitude [m]: the bin's whole energy)
+//     φᵢ = 2π u₂                                          (random phase)
+//     bᵢ = |H(ωᵢ)| aᵢ,  ψᵢ = φᵢ + arg H(ωᵢ)                (transfer H: elevation, slope, roll moment, RAO)
+//   so the output variance is Σ bᵢ²/2, and for H = 1 it is ∫_band S dω (= m0 less the tails outside the band).
+//   Draw order (determinism): for i = 0..N−1: u₁ then u₂ — 2N uniforms from the caller's generator.
+//   Default band [0.5 ωp, 5 ωp]: holds 99.8 % of PM's m0 (its energy above ω is m0 (1 − exp(−1.25 (ωp/ω)⁴))).
+//
+// Evaluation:
+//   at(t)        direct sum, N sin/cos — any t, const, exact to rounding.
+//   sample(n)    y and ẏ at t = n·dt on the grid of `grid_period` dt: unit phasors zᵢ = exp(i(ωᵢ t + ψᵢ)) are
+//                rotated by the precomputed ρᵢ = exp(i ωᵢ dt) (4 multiplies and 2 adds per component, no libm),
+//                and re-anchored exactly from the integer index (zᵢ = exp(i(ωᵢ·(n·dt) + ψᵢ)), t = n·dt one
+//                rounding, never accumulated) whenever n is a multiple of kAnchorInterval = 1024. The result is a
+//                pure function of n — a jump to another n replays from that block's anchor — so it does not
+//                depend on the call history, and the rotation error is bounded by 1024 steps (~1e-13 relative)
+//                however long the run. Repeated calls with the same n are free (cached).
+//   operator()(t)  y(t): sample(round(t/dt)) when t is on the grid within 1e-6 dt, else at(t). An integrator's
+//                stage times (RK4: t, t + h/2, t + h) land on the grid of dt = h/2, so a plant RHS can call it.
+//                The phasor cache is `mutable`: one sea per loop/thread.
+//
+// Parameters: MaxComponents (capacity), N = components ≥ 1, band [rad/s], jitter ∈ [0, 1], grid_period [s] > 0.
+// Hot path (sample, operator() on the grid): allocation-free, O(N) multiply-adds, plus N sincos every 1024 steps.
+// Tests: tests/oracle/wave_spectrum_test.cpp (sample variance vs m0), tests/determinism/motion_determinism_test.cpp,
+// tests/alloc/motion_alloc_test.cpp, tests/unit/base_motion_generators_test.cpp (grid vs direct).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <numbers>
+
+#include "sim/motion/wave_spectrum.hpp"
+#include "sim/motion/wave_transfer.hpp"
+#include "sim/random/seeded_rng.hpp"
+
+namespace gyrostab::motion {
+
+struct IrregularSeaParams {
+  int components{64};        // N [-], 1 ≤ N ≤ MaxComponents
+  double omega_min{0.0};     // lower band edge [rad/s]; 0 ⇒ 0.5 ωp
+  double omega_max{0.0};     // upper band edge [rad/s]; 0 ⇒ 5 ωp
+  double jitter{1.0};        // fraction of a bin over which ωᵢ is drawn [-]
+  double grid_period{1e-3};  // dt of the sample(n) grid [s]
+};
+
+struct WaveSample {
+  double value{0.0};  // y [output unit: m, rad, N m, ...]
+  double rate{0.0};   // dy/dt [output unit / s]
+};
+
+template <int MaxComponents = 128>
+class IrregularSea {
+  static_assert(MaxComponents >= 1);
+  static constexpr int kCapacity = (MaxComponents + 3) / 4 * 4;  // padded to whole groups of 4
+
+ public:
+  static constexpr int kAnchorInterval = 1024;
+
+  static const char* check(const IrregularSeaParams& p) {
+    if (p.components < 1 || p.components > MaxComponents) return "irregular sea: components must be in [1, capacity]";
+    if (p.omega_min < 0.0 || (p.omega_max != 0.0 && !(p.omega_max > p.omega_min)))
+      return "irregular sea: band must satisfy 0 <= omega_min < omega_max";
+    if (!(p.jitter >= 0.0 && p.jitter <= 1.0)) return "irregular sea: jitter must be in [0, 1]";
+    if (!(p.grid_period > 0.0)) return "irregular sea: grid_period must be > 0 s";
+    return nullptr;
+  }
+
+  template <class Transfer = ElevationTransfer>
+  IrregularSea(const WaveSpectrum& spectrum, const IrregularSeaParams& p, random::SeededRng& rng,
+               const Transfer& transfer = {})
+      : n_(p.components), dt_(p.grid_period) {
+    const double wp = spectrum.peak_frequency();
+    lo_ = p.omega_min > 0.0 ? p.omega_min : 0.5 * wp;
+    hi_ = p.omega_max > 0.0 ? p.omega_max : 5.0 * wp;
+    const double dw = (hi_ - lo_) / n_;
+    for (int i = 0; i < n_; ++i) {
+      const double u1 = rng.uniform();
+      const double u2 = rng.uniform();
+      const double bin_lo = lo_ + i * dw;
+      const double w = bin_lo + (0.5 + p.jitter * (u1 - 0.5)) * dw;
+      const double a = std::sqrt(2.0 * spectrum.integral(bin_lo, bin_lo + dw));
+      const std::complex<double> h = transfer(w);
+      omega_[i] = w;
+      elevation_amplitude_[i] = a;
+      amplitude_[i] = std::abs(h) * a;
+      phase_[i] = 2.0 * std::numbers::pi * u2 + std::arg(h);
+      rate_coeff_[i] = -w * amplitude_[i];
+      rot_re_[i] = std::cos(w * dt_);
+      rot_im_[i] = std::sin(w * dt_);
+      band_variance_ += 0.5 * a * a;
+      output_variance_ += 0.5 * amplitude_[i] * amplitude_[i];
+    }
+    // Padding slots keep amplitude 0 and rotate by 1: they add exact zeros.
+    for (int i = n_; i < kCapacity; ++i) rot_re_[i] = 1.0;
+    groups_ = (n_ + 3) / 4;
+  }
+
+  int size() const { return n_; }
+  double band_lo() const { return lo_; }
+  double band_hi() const { return hi_; }
+  double grid_period() const { return dt_; }
+  double frequency(int i) const { return omega_[i]; }                       // ωᵢ [rad/s]
+  double elevation_amplitude(int i) const { return elevation_amplitude_[i]; }  // aᵢ [m]
+  double amplitude(int i) const { return amplitude_[i]; }                   // bᵢ [output unit]
+  double phase(int i) const { return phase_[i]; }                           // ψᵢ [rad]
+  double band_variance() const { return band_variance_; }                   // Σ aᵢ²/2 = ∫_band S [m²]
+  double output_variance() const { return output_variance_; }               // Σ bᵢ²/2 [output unit²]
+
+  // Direct evaluation at any t [s].
+  WaveSample at(double t) const {
+    WaveSample s;
+    for (int i = 0; i < n_; ++i) {
+      const double th = omega_[i] * t + phase_[i];
+      s.value += amplitude_[i] * std::cos(th);
+      s.rate += rate_coeff_[i] * std::sin(th);
+    }
+    return s;
+  }
+
+  // Grid evaluation at t = n·dt (see the header). Logically const: the phasors are a cache.
+  const WaveSample& sample(std::int64_t n) const {
+    if (valid_ && n == n_cached_) return cached_;
+    if (valid_ && n == n_cached_ + 1 && floor_mod(n) != 0) {
+      rotate();  // the same rotate() and sum() as a replay: bit-identical either way
+    } else {
+      const std::int64_t n0 = n - floor_mod(n);
+      anchor(n0);
+      for (std::int64_t k = n0; k < n; ++k) rotate();
+    }
+    sum();
+    n_cached_ = n;
+    valid_ = true;
+    return cached_;
+  }
+
+  // y(t) [output unit]: the grid path when t is on the grid, else the direct sum.
+  double operator()(double t) const {
+    const double x = t / dt_;
+    if (std::abs(x) < 4.0e18) {
+      const auto n = static_cast<std::int64_t>(std::llround(x));
+      if (std::abs(t - static_cast<double>(n) * dt_) <= 1e-6 * dt_) return sample(n).value;
+    }
+    return at(t).value;
+  }
+
+ private:
+  static std::int64_t floor_mod(std::int64_t n) {
+    const std::int64_t r = n % kAnchorInterval;
+    return r < 0 ? r + kAnchorInterval : r;
+  }
+
+  void anchor(std::int64_t n0) const {
+    const double t0 = static_cast<double>(n0) * dt_;
+    for (int i = 0; i < n_; ++i) {
+      const double th = omega_[i] * t0 + phase_[i];
+      re_[i] = std::cos(th);
+      im_[i] = std::sin(th);
+    }
+  }
+
+  void rotate() const {
+    for (int i = 0; i < 4 * groups_; ++i) {
+      const double r = re_[i] * rot_re_[i] - im_[i] * rot_im_[i];
+      const double m = re_[i] * rot_im_[i] + im_[i] * rot_re_[i];
+      re_[i] = r;
+      im_[i] = m;
+    }
+  }
+
+  // Four interleaved partial sums (lane = i mod 4), combined in a fixed order: vectorizable and deterministic.
+  void sum() const {
+    double v[4] = {0, 0, 0, 0}, d[4] = {0, 0, 0, 0};
+    for (int g = 0; g < groups_; ++g) {
+      for (int l = 0; l < 4; ++l) {
+        const int i = 4 * g + l;
+        v[l] += amplitude_[i] * re_[i];
+        d[l] += rate_coeff_[i] * im_[i];
+      }
+    }
+    cached_.value = (v[0] + v[1]) + (v[2] + v[3]);
+    cached_.rate = (d[0] + d[1]) + (d[2] + d[3]);
+  }
+
+  using Array = std::array<double, kCapacity>;
+  int n_;
+  int groups_{0};
+  double dt_;
+  double lo_{0.0}, hi_{0.0};
+  double band_variance_{0.0}, output_variance_{0.0};
+  Array omega_{}, elevation_amplitude_{}, amplitude_{}, phase_{}, rate_coeff_{};
+  Array rot_re_{}, rot_im_{};
+  mutable Array re_{}, im_{};
+  mutable WaveSample cached_{};
+  mutable std::int64_t n_cached_{0};
+  mutable bool valid_{false};
+};
+
+}  // namespace gyrostab::motion
