@@ -45,10 +45,19 @@ void* realloc(void* p, std::size_t n) {
 #endif
 
 namespace {
+// operator new counts once itself and must not be counted again by the malloc interposer.
+void* uncounted_malloc(std::size_t n) {
+#if GYROSTAB_COUNT_MALLOC
+  return __libc_malloc(n);
+#else
+  return std::malloc(n);
+#endif
+}
+
 void* counted_new(std::size_t n) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
   if (n == 0) n = 1;
-  void* p = std::malloc(n);
+  void* p = uncounted_malloc(n);
   if (!p) throw std::bad_alloc();
   return p;
 }
