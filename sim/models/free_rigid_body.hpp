@@ -22,7 +22,7 @@ class FreeRigidBody {
   using State = RigidBodyState;
   static constexpr const char* kName = "free-rigid-body";
 
-  explicit FreeRigidBody(const FreeRigidBodyParams& p = {}) : p_(p) {}
+  explicit FreeRigidBody(const FreeRigidBodyParams& p = {}) : p_(p), inv_inertia_(p.inertia.cwiseInverse()) {}
 
   const dynamics::Vec3& inertia() const { return p_.inertia; }
   // Torque-free: the splitting integrator's kicks vanish.
@@ -32,7 +32,7 @@ class FreeRigidBody {
   static constexpr bool kHasTorque = false;
 
   void derivative(double /*t*/, const State& x, State& dx) const {
-    rigid_body_derivative(p_.inertia, dynamics::Vec3::Zero(), x, dx);
+    rigid_body_derivative(p_.inertia, inv_inertia_, dynamics::Vec3::Zero(), x, dx);
   }
   void jacobian(double /*t*/, const State& x, Eigen::Matrix<double, 7, 7>& J) const {
     rigid_body_jacobian(p_.inertia, Eigen::Matrix<double, 3, 4>::Zero(), x, J);
@@ -49,6 +49,7 @@ class FreeRigidBody {
 
  private:
   FreeRigidBodyParams p_;
+  dynamics::Vec3 inv_inertia_;
 };
 
 }  // namespace gyrostab::models

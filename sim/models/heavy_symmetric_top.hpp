@@ -27,7 +27,8 @@ class HeavySymmetricTop {
   static constexpr const char* kName = "heavy-symmetric-top";
   static constexpr bool kHasTorque = true;
 
-  explicit HeavySymmetricTop(const HeavySymmetricTopParams& p = {}) : p_(p), inertia_(p.A, p.A, p.C) {}
+  explicit HeavySymmetricTop(const HeavySymmetricTopParams& p = {})
+      : p_(p), inertia_(p.A, p.A, p.C), inv_inertia_(inertia_.cwiseInverse()) {}
 
   const HeavySymmetricTopParams& params() const { return p_; }
   const dynamics::Vec3& inertia() const { return inertia_; }
@@ -39,7 +40,7 @@ class HeavySymmetricTop {
   }
 
   void derivative(double t, const State& x, State& dx) const {
-    rigid_body_derivative(inertia_, body_torque(t, x.segment<4>(3)), x, dx);
+    rigid_body_derivative(inertia_, inv_inertia_, body_torque(t, x.segment<4>(3)), x, dx);
   }
   void jacobian(double /*t*/, const State& x, Eigen::Matrix<double, 7, 7>& J) const {
     // Γ = (2(xz - wy), 2(yz + wx), 1 - 2(x² + y²)); M = Gs (Γ2, -Γ1, 0).
@@ -66,6 +67,7 @@ class HeavySymmetricTop {
  private:
   HeavySymmetricTopParams p_;
   dynamics::Vec3 inertia_;
+  dynamics::Vec3 inv_inertia_;
 };
 
 }  // namespace gyrostab::models

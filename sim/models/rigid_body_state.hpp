@@ -25,11 +25,12 @@ inline RigidBodyState make_rigid_body_state(const dynamics::Vec3& w_B, const dyn
 
 // Rigid-body dynamics in body axes, Euler (1.84): I w' = M - w × (I w), and the quaternion kinematics.
 // Shared by every rigid-body model so that the Jacobian below stays in one place.
-inline void rigid_body_derivative(const dynamics::Vec3& inertia, const dynamics::Vec3& torque_B,
-                                  const RigidBodyState& x, RigidBodyState& dx) {
+// `inv_inertia` is 1/I per axis, precomputed: three divisions would sit on the step's dependency chain.
+inline void rigid_body_derivative(const dynamics::Vec3& inertia, const dynamics::Vec3& inv_inertia,
+                                  const dynamics::Vec3& torque_B, const RigidBodyState& x, RigidBodyState& dx) {
   const dynamics::Vec3 w = x.segment<3>(0);
   const dynamics::Vec3 L = inertia.cwiseProduct(w);
-  dx.segment<3>(0) = (torque_B - w.cross(L)).cwiseQuotient(inertia);
+  dx.segment<3>(0) = (torque_B - w.cross(L)).cwiseProduct(inv_inertia);
   dynamics::quaternion_rate(x.segment<4>(3), w, dx.segment<4>(3));
 }
 
