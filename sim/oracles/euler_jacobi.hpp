@@ -61,8 +61,10 @@ class EulerJacobiSolution {
   // w0_B: body rates at time t0, same axes [rad/s], not zero.
   EulerJacobiSolution(const Eigen::Vector3d& inertia_B, const Eigen::Vector3d& w0_B, double t0 = 0.0)
       : t0_(t0) {
-    if (!(inertia_B.minCoeff() > 0.0)) throw std::invalid_argument("EulerJacobiSolution: moments must be > 0");
-    if (!(w0_B.norm() > 0.0)) throw std::invalid_argument("EulerJacobiSolution: initial rate must be non-zero");
+    if (!(inertia_B.minCoeff() > 0.0))
+      throw std::invalid_argument("EulerJacobiSolution: moments must be > 0");
+    if (!(w0_B.norm() > 0.0))
+      throw std::invalid_argument("EulerJacobiSolution: initial rate must be non-zero");
     // Sort the caller's axes to A > B > C; perm_[j] is the caller axis of sorted axis j.
     perm_ = {0, 1, 2};
     std::sort(perm_.begin(), perm_.end(), [&](int i, int j) { return inertia_B[i] > inertia_B[j]; });
@@ -163,6 +165,18 @@ class EulerJacobiSolution {
     Eigen::Vector3d w_B;
     for (int j = 0; j < 3; ++j) w_B[perm_[j]] = parity_ * w_sorted[j];
     return w_B;
+  }
+
+  // First time ≥ t at which the middle-axis rate changes sign [s]: τ = 2jK in cases a and b (the flips are
+  // T_s/2 apart), τ = 0 on the separatrix (one flip); +inf if there is none.
+  double next_middle_axis_zero(double t) const {
+    const double tau = tau0_ + rate_ * (t - t0_);
+    if (regime_ == EulerPoinsotCase::kSeparatrix) {
+      return (!permanent_ && tau <= 0.0) ? t0_ - tau0_ / rate_ : std::numeric_limits<double>::infinity();
+    }
+    if (amp_[1] == 0.0) return std::numeric_limits<double>::infinity();  // permanent rotation
+    const double j = std::ceil(tau / (2.0 * K_));
+    return t0_ + (2.0 * K_ * j - tau0_) / rate_;
   }
 
   EulerPoinsotCase regime() const { return regime_; }

@@ -16,7 +16,8 @@
 //   * the exact mean precession rate of the rest-spin release over whole nutation periods [D]:
 //       ψ' = Cω0 (u0 - u) / (A (1 - u²)) from (3.40) with H0 = Cω0u0, and with partial fractions
 //       mean ψ' = (Cω0/A)/(2K) [ (1+u0)/(1+u1) Π(n₊, k) - (1-u0)/(1-u1) Π(n₋, k) ],
-//       n₋ = (u2 - u1)/(1 - u1), n₊ = -(u2 - u1)/(1 + u1), Π(n, k) = ∫0^{π/2} dφ/((1 - n sin²φ)√(1 - k² sin²φ));
+//       n₋ = (u2 - u1)/(1 - u1), n₊ = -(u2 - u1)/(1 + u1), Π(n, k) = ∫0^{π/2} dφ/((1 - n sin²φ)√(1 - k²
+//       sin²φ));
 //   * the regular-precession rates (3.57)-(3.60): A cosθ0 ψ'² - Cω0 ψ' + Gs = 0, slow root formed as
 //     2Gs/(Cω0(1 + √d)) to avoid cancellation (and to give Gs/(Cω0), (3.61), at θ0 = π/2);
 //   * the sleeping top (3.67)-(3.70): stable iff a ≥ 1; for a < 1 it falls to cos θ = 2a - 1; after an
@@ -98,7 +99,9 @@ inline TurningPoints tilted_start_turning_points(const LagrangeTopParams& p, dou
 }
 
 // k² = (u2 - u1)/(u3 - u1), (3.48).
-inline double nutation_modulus_squared(const TurningPoints& r) { return (r.u2 - r.u1) / (r.u3 - r.u1); }
+inline double nutation_modulus_squared(const TurningPoints& r) {
+  return (r.u2 - r.u1) / (r.u3 - r.u1);
+}
 
 // T_S = K(k) √(8A/(Gs(u3 - u1))) [s]: the period of θ (and of ψ', φ').
 inline double nutation_period(const LagrangeTopParams& p, const TurningPoints& r) {
@@ -107,7 +110,8 @@ inline double nutation_period(const LagrangeTopParams& p, const TurningPoints& r
 }
 
 // u(t) = cos θ(t) for a motion that is at the upper turning point u2 at t = 0 (e.g. the rest-spin release).
-inline double cos_tilt_from_upper_turning_point(const LagrangeTopParams& p, const TurningPoints& r, double t) {
+inline double cos_tilt_from_upper_turning_point(const LagrangeTopParams& p, const TurningPoints& r,
+                                                double t) {
   const double k = std::sqrt(nutation_modulus_squared(r));
   const double tau = std::sqrt(p.Gs * (r.u3 - r.u1) / (2.0 * p.A)) * t;
   double cn = 0.0, dn = 0.0;
@@ -135,26 +139,30 @@ struct RegularPrecessionRates {
 };
 
 // Empty when the spin is below ω0*² = 4GsA cos θ0 / C² (no real roots).
-inline std::optional<RegularPrecessionRates> regular_precession_rates(const LagrangeTopParams& p, double theta0,
-                                                                      double omega0) {
+inline std::optional<RegularPrecessionRates> regular_precession_rates(const LagrangeTopParams& p,
+                                                                      double theta0, double omega0) {
   lagrange_detail::require_standing(p);
   const double c = std::cos(theta0);
   const double d = 1.0 - 4.0 * p.Gs * p.A * c / (p.C * p.C * omega0 * omega0);
   if (d < 0.0) return std::nullopt;
   const double root = std::sqrt(d);
   const double slow = 2.0 * p.Gs / (p.C * omega0 * (1.0 + root));
-  const double fast = c != 0.0 ? p.C * omega0 / (2.0 * p.A * c) * (1.0 + root)
-                               : std::numeric_limits<double>::infinity();
+  const double fast =
+      c != 0.0 ? p.C * omega0 / (2.0 * p.A * c) * (1.0 + root) : std::numeric_limits<double>::infinity();
   return RegularPrecessionRates{slow, fast};
 }
 
 // Sleeping (upright) top, (3.67)-(3.70): stable iff C²ω0² ≥ 4GsA, i.e. a ≥ 1.
-inline double sleeping_top_critical_spin(const LagrangeTopParams& p) { return 2.0 * std::sqrt(p.Gs * p.A) / p.C; }
+inline double sleeping_top_critical_spin(const LagrangeTopParams& p) {
+  return 2.0 * std::sqrt(p.Gs * p.A) / p.C;
+}
 inline bool sleeping_top_is_stable(const LagrangeTopParams& p, double omega0) {
   return spin_parameter(p, omega0) >= 1.0;
 }
 // Lowest cos θ reached after an infinitesimal kick: 2a - 1 for a < 1, 1 (stays up) for a ≥ 1.
-inline double sleeping_top_fall_cos_tilt(double a) { return a < 1.0 ? 2.0 * a - 1.0 : 1.0; }
+inline double sleeping_top_fall_cos_tilt(double a) {
+  return a < 1.0 ? 2.0 * a - 1.0 : 1.0;
+}
 
 // Exact turning points after an upright start (u0 = 1) with spin ω0 and transverse body rate ω_t [D]:
 // {1, roots of 2g u² - (ω_t² + 4ag) u - (ω_t² + 2g - 4ag)}, sorted. u1 is the lowest cos θ reached.
