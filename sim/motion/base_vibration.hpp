@@ -10,7 +10,8 @@
 // Assumptions: the vibration is along base-fixed directions and its displacement is small, so the transport
 // terms of a rotating base (2ω × ṡ, ω̇ × s, ω × (ω × s), all ∝ s) are neglected; no angular vibration
 // (use prescribed_base_rotation.hpp). Stateless, allocation-free, K sin/cos per call.
-// Test: tests/unit/base_motion_generators_test.cpp (a_B = second derivative of the displacement; up_B offset).
+// Test: tests/unit/base_motion_generators_test.cpp (a_B = second derivative of the displacement; up_B
+// offset).
 #pragma once
 
 #include <array>

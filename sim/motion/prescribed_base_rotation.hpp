@@ -1,11 +1,11 @@
 // Prescribed rotation of the base (suspension) from yaw, pitch and roll angles that are each a constant, a
-// constant rate and a sum of ≤ K harmonics: a ship rolling and pitching in a sea of several periods, a turning
-// ship (constant yaw rate Ω3, Magnus 14.1-14.2 curve running), angular vibration of the case (15.5, small
-// amplitudes). Generalizes models::HarmonicBaseRotation (one harmonic about one axis), which it reproduces for
-// roll only. Returns models::BaseSample (base_motion.hpp) for the gimbal and device models.
+// constant rate and a sum of ≤ K harmonics: a ship rolling and pitching in a sea of several periods, a
+// turning ship (constant yaw rate Ω3, Magnus 14.1-14.2 curve running), angular vibration of the case (15.5,
+// small amplitudes). Generalizes models::HarmonicBaseRotation (one harmonic about one axis), which it
+// reproduces for roll only. Returns models::BaseSample (base_motion.hpp) for the gimbal and device models.
 //
-// Attitude (digest §12.1, a^F = Rz(ψ) Ry(ϑ) Rx(φ)):  R_WB = Rz(ψ) Ry(θ) Rx(φ), base = world axes at zero angles,
-// world axis 3 up. Each angle  a(t) = a0 + ȧ0 t + Σₖ Aₖ sin(νₖ t + ψₖ), with analytic a', a''.
+// Attitude (digest §12.1, a^F = Rz(ψ) Ry(ϑ) Rx(φ)):  R_WB = Rz(ψ) Ry(θ) Rx(φ), base = world axes at zero
+// angles, world axis 3 up. Each angle  a(t) = a0 + ȧ0 t + Σₖ Aₖ sin(νₖ t + ψₖ), with analytic a', a''.
 //   ω_B = (φ' − ψ' sθ,  θ' cφ + ψ' cθ sφ,  −θ' sφ + ψ' cθ cφ)                             [rad/s]
 //   ω̇_B = (φ'' − ψ'' sθ − ψ'θ' cθ,
 //          θ'' cφ − θ'φ' sφ + ψ'' cθ sφ − ψ'θ' sθ sφ + ψ'φ' cθ cφ,
@@ -16,8 +16,9 @@
 //
 // Parameters: angles in [rad], rates [rad/s], frequencies [rad/s], lever arm [m], g [m/s²].
 // Assumptions: the centre of rotation does not translate (add heave/sway with base_vibration.hpp); θ away
-// from ±90° is not required (no Euler-rate inversion is done). Stateless, allocation-free, 3K+6 sin/cos per call.
-// Test: tests/unit/base_motion_generators_test.cpp (ω_B and ω̇_B against finite differences of the attitude).
+// from ±90° is not required (no Euler-rate inversion is done). Stateless, allocation-free, 3K+6 sin/cos per
+// call. Test: tests/unit/base_motion_generators_test.cpp (ω_B and ω̇_B against finite differences of the
+// attitude).
 #pragma once
 
 #include <array>
@@ -60,9 +61,9 @@ struct PrescribedAngle {
 
 template <int K = 4>
 struct PrescribedBaseRotation {
-  PrescribedAngle<K> yaw{}, pitch{}, roll{};            // ψ about world 3, θ about the yawed 2, φ about base 1
+  PrescribedAngle<K> yaw{}, pitch{}, roll{};  // ψ about world 3, θ about the yawed 2, φ about base 1
   dynamics::Vec3 lever_arm_B{dynamics::Vec3::Zero()};  // r_B [m]
-  double g{kStandardGravity};                           // [m/s²]
+  double g{kStandardGravity};                          // [m/s²]
 
   models::BaseSample operator()(double t) const {
     const auto y = yaw(t), p = pitch(t), r = roll(t);

@@ -3,7 +3,8 @@
 //
 // Parameters: E0 amplitude [N m], ω wave encounter frequency [rad/s], ψ phase [rad] (0 in the book).
 // From one regular wave of amplitude a [m] in deep water, the effective-wave-slope model (wave_transfer.hpp)
-// gives E0 = c κ (ω²/g) a: from_wave(). Stateless; one cos per call. Test: tests/unit/base_motion_generators_test.cpp.
+// gives E0 = c κ (ω²/g) a: from_wave(). Stateless; one cos per call. Test:
+// tests/unit/base_motion_generators_test.cpp.
 #pragma once
 
 #include <cmath>
@@ -17,13 +18,14 @@ struct RegularWaveMoment {
   double omega{0.5};  // [rad/s]
   double phase{0.0};  // [rad]
 
-  // E0 = c κ (ω²/g) a for roll stiffness c [N m/rad], effective-slope coefficient κ [-], wave amplitude a [m].
+  // E0 = c κ (ω²/g) a for roll stiffness c [N m/rad], effective-slope coefficient κ [-], wave amplitude a
+  // [m].
   static RegularWaveMoment from_wave(double c, double kappa, double wave_amplitude, double omega,
                                      double g = kStandardGravity) {
     return {c * kappa * omega * omega / g * wave_amplitude, omega, 0.0};
   }
 
-  double operator()(double t) const { return E0 * std::cos(omega * t + phase); }   // E [N m]
+  double operator()(double t) const { return E0 * std::cos(omega * t + phase); }     // E [N m]
   double rate(double t) const { return -E0 * omega * std::sin(omega * t + phase); }  // dE/dt [N m/s]
 };
 

@@ -3,20 +3,25 @@
 //
 //   generator  xoshiro256** 1.0 (Blackman & Vigna, "Scrambled linear pseudorandom number generators", 2018;
 //              reference C at prng.di.unimi.it): 256-bit state, period 2^256 − 1, output rotl(s1·5, 7)·9.
-//   seeding    the four state words are four successive SplitMix64 outputs from the 64-bit seed (Steele, Lea &
-//              Flood 2014) — the authors' recommended seeding, and PHP's Random\Engine\Xoshiro256StarStar(int).
+//   seeding    the four state words are four successive SplitMix64 outputs from the 64-bit seed (Steele, Lea
+//   &
+//              Flood 2014) — the authors' recommended seeding, and PHP's
+//              Random\Engine\Xoshiro256StarStar(int).
 //   streams    SeededRng(seed, k) is the seed's generator advanced by k jumps of 2^128 draws (the authors'
 //              jump polynomial): streams never overlap. Give each consumer (each sensor, the sea) its own
 //              stream of the scene seed. Cost ~256·k draws at construction, so k is a small index.
 //   uniform    (x >> 11)·2^-53: the 53 high bits, every value a multiple of 2^-53 in [0, 1).
-//   gaussian   Marsaglia's polar method (Marsaglia & Bray 1964): u, v uniform on (−1, 1), s = u² + v² ∈ (0, 1),
-//              accepted with probability π/4; returns u·√(−2 ln s / s) and keeps v·√(−2 ln s / s) for the next
-//              call. Uses only `sqrt` (IEEE-exact) and `log`: results are bit-identical wherever `std::log` is
-//              (same libm); std::normal_distribution is not used because its algorithm is implementation-defined.
+//   gaussian   Marsaglia's polar method (Marsaglia & Bray 1964): u, v uniform on (−1, 1), s = u² + v² ∈ (0,
+//   1),
+//              accepted with probability π/4; returns u·√(−2 ln s / s) and keeps v·√(−2 ln s / s) for the
+//              next call. Uses only `sqrt` (IEEE-exact) and `log`: results are bit-identical wherever
+//              `std::log` is (same libm); std::normal_distribution is not used because its algorithm is
+//              implementation-defined.
 //
 // Hot-path safe: no allocation, no exceptions, O(1) per draw (the polar method averages 1.27 pairs per two
 // Gaussians). The scene owns the generators; models take a `SeededRng&` and document their draw order.
-// Tests: tests/unit/seeded_rng_test.cpp (reference vectors for SplitMix64, xoshiro256** and its jumps; moments).
+// Tests: tests/unit/seeded_rng_test.cpp (reference vectors for SplitMix64, xoshiro256** and its jumps;
+// moments).
 #pragma once
 
 #include <array>
@@ -80,8 +85,11 @@ class SeededRng {
   }
   double gaussian(double mean, double sd) { return mean + sd * gaussian(); }
 
-  // Advance by 2^128 draws (xoshiro256 jump polynomial) / by 2^192 draws (long jump). Drops a cached Gaussian.
-  void jump() { apply_jump({0x180ec6d33cfd0abaULL, 0xd5a61266f0c9392cULL, 0xa9582618e03fc9aaULL, 0x39abdc4529b1661cULL}); }
+  // Advance by 2^128 draws (xoshiro256 jump polynomial) / by 2^192 draws (long jump). Drops a cached
+  // Gaussian.
+  void jump() {
+    apply_jump({0x180ec6d33cfd0abaULL, 0xd5a61266f0c9392cULL, 0xa9582618e03fc9aaULL, 0x39abdc4529b1661cULL});
+  }
   void long_jump() {
     apply_jump({0x76e15d3efefdcbbfULL, 0xc5004e441c522fb3ULL, 0x77710069854ee241ULL, 0x39109bb02acbe635ULL});
   }

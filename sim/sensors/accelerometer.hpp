@@ -1,6 +1,7 @@
 // Single-axis accelerometer: the specific force along its input axis (what a pendulum or a proof mass feels,
 // gravity included: g up_B of models::BaseSample; Magnus 16's platform accelerometers b = v' − g(α − ϑ)),
-// through a bandwidth, with scale-factor error, bias (constant + random walk), white noise and a digital output.
+// through a bandwidth, with scale-factor error, bias (constant + random walk), white noise and a digital
+// output.
 //
 //   y_k = Q( (1 + s_f) L(g n_B · up_B)_k + e_k )        [m/s²]
 //     L  exact discrete low-pass (sensor_lowpass.hpp); e  bias + white noise σ_w = N/√T (sensor_noise.hpp);
@@ -24,12 +25,12 @@ namespace gyrostab::sensors {
 
 struct AccelerometerParams {
   dynamics::Vec3 input_axis_B{dynamics::Vec3::UnitZ()};  // n_B [-]
-  double sample_period{1e-3};                             // T [s]
-  double g{motion::kStandardGravity};                     // [m/s²]
-  double scale_factor_error{0.0};                         // s_f [-]
-  LowpassParams bandwidth{};                              // f_bw [Hz], ζ [-]
-  SensorNoiseParams noise{};                              // N [m/s²/√Hz], b [m/s²], K [m/s³/√Hz]
-  OutputQuantizer output{};                               // LSB, full scale [m/s²]
+  double sample_period{1e-3};                            // T [s]
+  double g{motion::kStandardGravity};                    // [m/s²]
+  double scale_factor_error{0.0};                        // s_f [-]
+  LowpassParams bandwidth{};                             // f_bw [Hz], ζ [-]
+  SensorNoiseParams noise{};                             // N [m/s²/√Hz], b [m/s²], K [m/s³/√Hz]
+  OutputQuantizer output{};                              // LSB, full scale [m/s²]
 };
 
 class Accelerometer {

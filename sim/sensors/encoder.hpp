@@ -31,7 +31,8 @@ struct EncoderParams {
 class Encoder {
  public:
   explicit Encoder(const EncoderParams& p = {})
-      : p_(p), per_rad_(static_cast<double>(p.counts_per_rev) / (2.0 * std::numbers::pi)),
+      : p_(p),
+        per_rad_(static_cast<double>(p.counts_per_rev) / (2.0 * std::numbers::pi)),
         lsb_(2.0 * std::numbers::pi / static_cast<double>(p.counts_per_rev)) {}
 
   std::int64_t counts(double angle) const {

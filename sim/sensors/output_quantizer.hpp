@@ -1,4 +1,5 @@
-// The digital output stage of a sensor: saturation at ± full scale, then rounding to the least significant bit.
+// The digital output stage of a sensor: saturation at ± full scale, then rounding to the least significant
+// bit.
 //
 //   y = lsb · round(clamp(x, −full_scale, +full_scale) / lsb)      (round half away from zero, std::round)
 //

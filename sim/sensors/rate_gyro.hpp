@@ -8,11 +8,12 @@
 //     e  bias b_k + white noise σ_w ξ_k, σ_w = N/√T (sensor_noise.hpp)            [rad/s]
 //     Q  saturation at ± full scale and rounding to the LSB (output_quantizer.hpp)   [rad/s]
 //
-// Parameters: n_B unit input axis (case = base axes), T sample period [s], s_f [-], the filter (f_bw [Hz], ζ),
-// N [rad/s/√Hz], b [rad/s], K [rad/s²/√Hz], LSB and full scale [rad/s]. Defaults: an ideal gyro (no filter,
-// no errors). Assumptions: no g-sensitivity, no cross-axis coupling, case rigidly on the base.
-// Hot path: measure() is allocation-free, ≤ 2 Gaussians from the caller's generator (draw order: sensor_noise).
-// Test: tests/unit/sensors_test.cpp (DC gain 1, −3 dB at f_bw, σ_w = N/√T, bias), determinism and alloc tests.
+// Parameters: n_B unit input axis (case = base axes), T sample period [s], s_f [-], the filter (f_bw [Hz],
+// ζ), N [rad/s/√Hz], b [rad/s], K [rad/s²/√Hz], LSB and full scale [rad/s]. Defaults: an ideal gyro (no
+// filter, no errors). Assumptions: no g-sensitivity, no cross-axis coupling, case rigidly on the base. Hot
+// path: measure() is allocation-free, ≤ 2 Gaussians from the caller's generator (draw order: sensor_noise).
+// Test: tests/unit/sensors_test.cpp (DC gain 1, −3 dB at f_bw, σ_w = N/√T, bias), determinism and alloc
+// tests.
 #pragma once
 
 #include "sim/models/base_motion.hpp"
@@ -25,11 +26,11 @@ namespace gyrostab::sensors {
 
 struct RateGyroParams {
   dynamics::Vec3 input_axis_B{dynamics::Vec3::UnitX()};  // n_B [-]
-  double sample_period{1e-3};                             // T [s]
-  double scale_factor_error{0.0};                         // s_f [-]
-  LowpassParams bandwidth{};                              // f_bw [Hz], ζ [-]
-  SensorNoiseParams noise{};                              // N [rad/s/√Hz], b [rad/s], K [rad/s²/√Hz]
-  OutputQuantizer output{};                               // LSB, full scale [rad/s]
+  double sample_period{1e-3};                            // T [s]
+  double scale_factor_error{0.0};                        // s_f [-]
+  LowpassParams bandwidth{};                             // f_bw [Hz], ζ [-]
+  SensorNoiseParams noise{};                             // N [rad/s/√Hz], b [rad/s], K [rad/s²/√Hz]
+  OutputQuantizer output{};                              // LSB, full scale [rad/s]
 };
 
 class RateGyro {

@@ -1,8 +1,9 @@
 // The bandwidth of a sensor: a unity-DC-gain low-pass of first or second order, discretized exactly for its
 // sample period T (zero-order-hold equivalent: the input is constant over each sample interval).
 //
-//   first order   H(s) = ω₀/(s + ω₀),                ω₀ = 2π f_bw:  y_k = a y_{k−1} + (1 − a) u_k,  a = e^{−ω₀T}
-//   second order  H(s) = ωn²/(s² + 2ζωn s + ωn²),   ẋ = A x + B u,  x = (y, ẏ),  A = [0 1; −ωn² −2ζωn],  B = (0, ωn²)
+//   first order   H(s) = ω₀/(s + ω₀),                ω₀ = 2π f_bw:  y_k = a y_{k−1} + (1 − a) u_k,  a =
+//   e^{−ω₀T} second order  H(s) = ωn²/(s² + 2ζωn s + ωn²),   ẋ = A x + B u,  x = (y, ẏ),  A = [0 1; −ωn²
+//   −2ζωn],  B = (0, ωn²)
 //                 x_k = Φ x_{k−1} + Γ u_k,  Φ = e^{AT},  Γ = A⁻¹(Φ − I) B     (Franklin, Powell & Workman,
 //                 Digital Control of Dynamic Systems, §4.3: the ZOH equivalent)
 //                 e^{AT} = e^{μT}[C I + S (A − μI)], μ = −ζωn, ν² = ωn²(ζ² − 1): C = cosh νT, S = sinh(νT)/ν
@@ -12,12 +13,15 @@
 //                 Magnus's P-gyro (15.2) B β'' + d2 β' + c2 β = H Ω1 is this filter with ωn = √(c2/B),
 //                 ζ = d2/(2√(B c2)); practical natural frequencies 10-60 Hz (digest §4.2).
 //   update(u_k) takes the input sampled now (held over the interval just ended) and returns y_k: no extra
-//   delay (latency is the scene's). DC gain is 1 (−C A⁻¹ B = 1 is preserved by the ZOH equivalent); the gain at
-//   f_bw is 1/√2 up to the O((ω T)²) difference between the discrete and continuous responses (+0.036 dB at
-//   f_bw = fs/20); frequency_response() gives the exact discrete one.
+//   delay (latency is the scene's). DC gain is 1 (−C A⁻¹ B = 1 is preserved by the ZOH equivalent); the gain
+//   at f_bw is 1/√2 up to the O((ω T)²) difference between the discrete and continuous responses (at f_bw =
+//   fs/20: +0.036 dB first order, −0.035 dB second order; 100× less at fs/200); frequency_response() gives
+//   the exact discrete one. A step held from sample 1 on reproduces the continuous step response at every
+//   sample.
 //
-// State: y [input unit], ẏ [input unit/s] (second order). Parameters: order, f_bw [Hz] > 0, ζ [-] > 0, T [s] > 0.
-// Hot path: update() is 1 (first order) or 4 multiply-adds, allocation-free. Test: tests/unit/sensors_test.cpp.
+// State: y [input unit], ẏ [input unit/s] (second order). Parameters: order, f_bw [Hz] > 0, ζ [-] > 0, T [s]
+// > 0. Hot path: update() is 1 (first order) or 4 multiply-adds, allocation-free. Test:
+// tests/unit/sensors_test.cpp.
 #pragma once
 
 #include <cmath>
@@ -29,7 +33,7 @@ namespace gyrostab::sensors {
 struct LowpassParams {
   enum class Order { kNone, kFirst, kSecond };
   Order order{Order::kNone};
-  double bandwidth_hz{100.0};           // −3 dB frequency [Hz]
+  double bandwidth_hz{100.0};               // −3 dB frequency [Hz]
   double damping{std::numbers::sqrt2 / 2};  // ζ [-], second order only
 };
 
@@ -112,7 +116,8 @@ class SensorLowpass {
         return g1_ / (1.0 - f11_ * zi);
       case Order::kSecond: {
         // M = I − Φ z⁻¹; first row of M⁻¹ times Γ.
-        const std::complex<double> m11 = 1.0 - f11_ * zi, m12 = -f12_ * zi, m21 = -f21_ * zi, m22 = 1.0 - f22_ * zi;
+        const std::complex<double> m11 = 1.0 - f11_ * zi, m12 = -f12_ * zi, m21 = -f21_ * zi,
+                                   m22 = 1.0 - f22_ * zi;
         return (m22 * g1_ - m12 * g2_) / (m11 * m22 - m12 * m21);
       }
     }

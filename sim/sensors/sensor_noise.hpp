@@ -2,14 +2,17 @@
 // caller's seeded generator (random/seeded_rng.hpp). Continuous-time densities in the IEEE Std 952 / Kalibr
 // "IMU noise model" convention, turned into per-sample standard deviations for the sample period T:
 //
-//   e_k = b_k + σ_w ξ_k,         σ_w = N / √T        N  white-noise density [unit/√Hz] (a rate gyro's angle random
-//                                                       walk [rad/s/√Hz]: the integrated angle spreads as N√t)
-//   b_{k+1} = b_k + σ_b ζ_k,     σ_b = K √T          K  bias random-walk density [unit/s/√Hz] (rate random walk)
-//   b_0 = b                                          b  constant (turn-on) bias [unit]
+//   e_k = b_k + σ_w ξ_k,         σ_w = N / √T        N  white-noise density [unit/√Hz] (a rate gyro's angle
+//   random
+//                                                       walk [rad/s/√Hz]: the integrated angle spreads as
+//                                                       N√t)
+//   b_{k+1} = b_k + σ_b ζ_k,     σ_b = K √T          K  bias random-walk density [unit/s/√Hz] (rate random
+//   walk) b_0 = b                                          b  constant (turn-on) bias [unit]
 //
 // ξ, ζ ~ N(0, 1) independent. Draw order per sample (determinism): ξ_k if N > 0, then ζ_k if K > 0 — a zero
 // density draws nothing. Hot path: ≤ 2 Gaussians per sample, allocation-free.
-// Test: tests/unit/sensors_test.cpp (σ_w against N/√T within a chi-square bound, bias increments against K√T).
+// Test: tests/unit/sensors_test.cpp (σ_w against N/√T within a chi-square bound, bias increments against
+// K√T).
 #pragma once
 
 #include <cmath>
@@ -28,7 +31,8 @@ class SensorNoise {
  public:
   SensorNoise(const SensorNoiseParams& p, double sample_period)
       : white_sd_(p.white_density / std::sqrt(sample_period)),
-        bias_step_sd_(p.bias_random_walk * std::sqrt(sample_period)), bias_(p.bias) {}
+        bias_step_sd_(p.bias_random_walk * std::sqrt(sample_period)),
+        bias_(p.bias) {}
 
   // The error to add to sample k; advances the bias to k + 1.
   double sample(random::SeededRng& rng) {
@@ -38,8 +42,8 @@ class SensorNoise {
     return e;
   }
 
-  double bias() const { return bias_; }                 // b_k for the next sample [unit]
-  double white_sd() const { return white_sd_; }         // σ_w [unit]
+  double bias() const { return bias_; }                  // b_k for the next sample [unit]
+  double white_sd() const { return white_sd_; }          // σ_w [unit]
   double bias_step_sd() const { return bias_step_sd_; }  // σ_b [unit]
 
  private:

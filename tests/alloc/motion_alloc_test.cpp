@@ -19,10 +19,11 @@ namespace {
 TEST(MotionAlloc, MillionTicksOfSeaBaseMotionAndSensorsAllocateNothing) {
   gyrostab::testing::AllocationCounter construction;
   random::SeededRng sea_rng(1, 0), sensor_rng(1, 1);
-  const motion::WaveSpectrum spectrum({motion::WaveSpectrumParams::Kind::kJonswap, 3.0, 9.0, 3.3, 0.07, 0.09});
+  const motion::WaveSpectrum spectrum(
+      {motion::WaveSpectrumParams::Kind::kJonswap, 3.0, 9.0, 3.3, 0.07, 0.09});
   motion::IrregularSeaParams sp;
   sp.components = 64;
-  sp.grid_period = 0.5e-3;  // RK4 stages of a 1 ms step
+  sp.grid_period = 1e-3;  // the plant step: RK4 stages on and between grid points
   const motion::IrregularSea<64> sea(spectrum, sp, sea_rng, motion::WaveRollMomentTransfer{1.1772e7, 0.8});
   const motion::RegularWaveMoment regular{2e5, 0.6, 0.0};
   motion::VibratingBase<motion::PrescribedBaseRotation<3>, 2> base;

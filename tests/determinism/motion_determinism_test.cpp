@@ -1,6 +1,6 @@
 // Same seed ⇒ bit-identical suspension motion and sensor readings; a different seed ⇒ different ones.
-// The "scene" here: a JONSWAP sea (roll moment), a ship attitude, base vibration, a rate gyro, an accelerometer
-// and an encoder, each random consumer on its own stream of the scene seed.
+// The "scene" here: a JONSWAP sea (roll moment), a ship attitude, base vibration, a rate gyro, an
+// accelerometer and an encoder, each random consumer on its own stream of the scene seed.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -19,7 +19,8 @@ namespace {
 
 std::vector<double> run_scene(std::uint64_t seed, int ticks) {
   random::SeededRng sea_rng(seed, 0), gyro_rng(seed, 1), accel_rng(seed, 2);
-  const motion::WaveSpectrum spectrum({motion::WaveSpectrumParams::Kind::kJonswap, 3.0, 9.0, 3.3, 0.07, 0.09});
+  const motion::WaveSpectrum spectrum(
+      {motion::WaveSpectrumParams::Kind::kJonswap, 3.0, 9.0, 3.3, 0.07, 0.09});
   motion::IrregularSeaParams sp;
   sp.components = 64;
   sp.grid_period = 1e-3;
@@ -86,7 +87,8 @@ TEST(MotionDeterminism, StreamsOfOneSeedAreIndependentOfEachOthersUse) {
   for (int i = 0; i < 1000; ++i) s1.gaussian();
   random::SeededRng fresh(9, 0);
   const motion::WaveSpectrum spectrum;
-  const motion::IrregularSea<32> a(spectrum, {32, 0, 0, 1.0, 1e-3}, s0), b(spectrum, {32, 0, 0, 1.0, 1e-3}, fresh);
+  const motion::IrregularSea<32> a(spectrum, {32, 0, 0, 1.0, 1e-3}, s0),
+      b(spectrum, {32, 0, 0, 1.0, 1e-3}, fresh);
   for (int i = 0; i < 32; ++i) EXPECT_EQ(a.phase(i), b.phase(i));
 }
 
