@@ -1,0 +1,329 @@
+// Scene binding of the gyroscopic ship roll damper (Magnus §14.2, (14.8)): the plant
+// (sim/models/ship_roll_damper.hpp) in a regular or irregular sea, its sensors, the firmware controller
+// (firmware/app/ship_roll_damper_controller.hpp: passive brake or active precession control) and, in the
+// same sea, the same ship with the gyro locked — the unstabilized reference for `roll_reduction`.
+// Keys: docs/scenes.md#ship_roll_damper.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numbers>
+#include <variant>
+
+#include "firmware/app/ship_roll_damper_controller.hpp"
+#include "firmware/platform/posix/monotonic_clock.hpp"
+#include "sim/dynamics/rk4.hpp"
+#include "sim/dynamics/substepping.hpp"
+#include "sim/models/ship_roll_damper.hpp"
+#include "sim/motion/irregular_sea.hpp"
+#include "sim/motion/regular_wave_moment.hpp"
+#include "sim/motion/wave_spectrum.hpp"
+#include "sim/motion/wave_transfer.hpp"
+#include "sim/random/seeded_rng.hpp"
+#include "sim/sensors/encoder.hpp"
+#include "sim/sensors/sensor_noise.hpp"
+#include "tools/devices/running_stats.hpp"
+#include "tools/devices/scene_device.hpp"
+#include "tools/run/closed_loop.hpp"
+#include "tools/run/controller_report.hpp"
+
+namespace gyrostab::tools {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+using Sea = motion::IrregularSea<256>;
+// Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
+using Controller = firmware::BasicShipRollDamperController<firmware::posix::MonotonicClock>;
+
+// Random streams of the scene seed, one per consumer (seeded_rng.hpp): adding a consumer never shifts another.
+enum Stream : std::uint64_t { kSeaStream = 1, kRollAngleStream, kRollRateStream, kPrecessionRateStream };
+
+struct SeaConfig {
+  bool regular{false};
+  motion::RegularWaveMoment wave{};
+  motion::WaveSpectrumParams spectrum{};
+  motion::IrregularSeaParams irregular{};
+  double kappa{1.0};
+};
+
+struct SensorConfig {
+  double roll_angle_noise_rad{1e-4};          // white noise of the roll-angle (inclinometer/AHRS) output [rad]
+  double roll_rate_noise_density{1e-4};       // rate gyro white noise [rad/s/√Hz]
+  double roll_rate_bias{0.0};                 // [rad/s]
+  double precession_rate_noise_density{1e-4}; // [rad/s/√Hz]
+  std::int64_t encoder_counts_per_rev{65536};
+};
+
+struct ShipScene {
+  LoopConfig loop;
+  models::ShipRollDamperParams ship;
+  double brake_full_Nms{1e7};  // plant brake at precession_brake = 1 (safe state locks the case) [N m s/rad]
+  SeaConfig sea;
+  SensorConfig sensors;
+  firmware::ShipRollDamperConfig controller;
+  double settle_s{60.0};
+};
+
+// The sea's roll moment E(t) [N m], regular (14.9) or irregular.
+class SeaMoment {
+ public:
+  SeaMoment(const SeaConfig& c, double grid_period, std::uint64_t seed, double roll_stiffness) : regular_(c.regular),
+      wave_(c.wave) {
+    if (!regular_) {
+      random::SeededRng rng(seed, kSeaStream);
+      motion::IrregularSeaParams p = c.irregular;
+      p.grid_period = grid_period;
+      sea_ = std::make_unique<Sea>(motion::WaveSpectrum(c.spectrum), p, rng,
+                                   motion::WaveRollMomentTransfer{roll_stiffness, c.kappa});
+    }
+  }
+  double operator()(double t) const { return regular_ ? wave_(t) : (*sea_)(t); }
+  double rms() const { return regular_ ? wave_.E0 / std::sqrt(2.0) : std::sqrt(sea_->output_variance()); }
+
+ private:
+  bool regular_;
+  motion::RegularWaveMoment wave_;
+  std::unique_ptr<Sea> sea_;
+};
+
+// The ship model with the sea moment evaluated at every integrator stage (no zero-order hold on E(t)) and
+// the precession brake acting as a viscous torque.
+struct ShipInSea {
+  static constexpr int kStateSize = 4;
+  using State = models::ShipRollDamper::State;
+  mutable models::ShipRollDamper ship;
+  const SeaMoment* sea;
+  double brake_Nms{0.0};
+  double command_Nm{0.0};
+
+  void derivative(double t, const State& x, State& dx) const {
+    ship.inputs.E = (*sea)(t);
+    ship.inputs.M2 = command_Nm - brake_Nms * x[3];
+    ship.derivative(t, x, dx);
+  }
+  void project(State&) const {}
+};
+
+class ShipRollDamperDevice {
+ public:
+  explicit ShipRollDamperDevice(const ShipScene& s)
+      : s_(s),
+        sea_(s.sea, s.loop.tick_s() / s.loop.substeps, s.loop.seed, s.ship.c),
+        plant_{models::ShipRollDamper(s.ship), &sea_, 0.0, 0.0},
+        reference_{models::ShipRollDamper(locked(s.ship)), &sea_, 0.0, 0.0},
+        integ_(plant_),
+        ref_integ_(reference_),
+        driver_(integ_, s.loop.tick_ns, s.loop.substeps),
+        ref_driver_(ref_integ_, s.loop.tick_ns, s.loop.substeps),
+        encoder_({s.sensors.encoder_counts_per_rev, 0.0, sensors::EncoderParams::Mode::kIncremental,
+                  sensors::EncoderParams::Rounding::kNearest}),
+        roll_angle_noise_({s.sensors.roll_angle_noise_rad * std::sqrt(s.loop.tick_s()), 0.0, 0.0}, s.loop.tick_s()),
+        roll_rate_noise_({s.sensors.roll_rate_noise_density, s.sensors.roll_rate_bias, 0.0}, s.loop.tick_s()),
+        precession_rate_noise_({s.sensors.precession_rate_noise_density, 0.0, 0.0}, s.loop.tick_s()),
+        rng_angle_(s.loop.seed, kRollAngleStream),
+        rng_rate_(s.loop.seed, kRollRateStream),
+        rng_precession_(s.loop.seed, kPrecessionRateStream),
+        controller_(std::make_unique<Controller>(s.controller)),
+        settle_tick_(static_cast<std::int64_t>(s.settle_s / s.loop.tick_s())) {
+    x_.setZero();
+    x_ref_.setZero();
+  }
+
+  void sense(std::int64_t tick, msg::SensorFrame& f) {
+    f = msg::SensorFrame{};
+    f.tick = static_cast<std::uint64_t>(tick);
+    f.time_ns = tick * s_.loop.tick_ns;
+    f.sample_time_ns = f.time_ns;
+    f.sequence = static_cast<std::uint32_t>(tick);
+    f.carrier_angle_rad[msg::kRoll] = x_[0] + roll_angle_noise_.sample(rng_angle_);
+    f.carrier_rate_rad_s[msg::kRoll] = x_[2] + roll_rate_noise_.sample(rng_rate_);
+    const std::int64_t counts = encoder_.counts(x_[1]);
+    f.encoder_count[msg::kAxis2] = static_cast<std::int32_t>(counts);
+    f.gimbal_angle_rad[msg::kAxis2] = encoder_.angle_of(counts);
+    f.gimbal_rate_rad_s[msg::kAxis2] = x_[3] + precession_rate_noise_.sample(rng_precession_);
+  }
+
+  void actuate(const msg::ActuatorFrame& cmd) {
+    last_ = cmd;
+    plant_.command_Nm = cmd.gimbal_torque_Nm[msg::kAxis2];
+    plant_.brake_Nms = s_.ship.d2 + std::clamp(cmd.precession_brake, 0.0, 1.0) * s_.brake_full_Nms;
+  }
+
+  void advance(std::int64_t tick) {
+    driver_.advance_tick(tick, x_);
+    ref_driver_.advance_tick(tick, x_ref_);
+    if (tick + 1 >= settle_tick_) {
+      roll_.add(x_[0]);
+      roll_ref_.add(x_ref_[0]);
+    }
+    precession_peak_ = std::fmax(precession_peak_, std::fabs(x_[1]));
+    torque_peak_ = std::fmax(torque_peak_, std::fabs(plant_.command_Nm));
+  }
+
+  bool finite() const { return x_.allFinite() && x_ref_.allFinite(); }
+
+  static std::vector<std::string> columns() {
+    return {"roll_rad", "roll_unstabilized_rad", "precession_rad", "roll_rate_rad_s", "precession_rate_rad_s",
+            "wave_moment_Nm", "precession_torque_Nm", "status_bits"};
+  }
+  void record(double* row) const {
+    const double t = 1e-9 * static_cast<double>((static_cast<std::int64_t>(last_.tick) + 1) * s_.loop.tick_ns);
+    row[0] = x_[0];
+    row[1] = x_ref_[0];
+    row[2] = x_[1];
+    row[3] = x_[2];
+    row[4] = x_[3];
+    row[5] = sea_(t);
+    row[6] = last_.gimbal_torque_Nm[msg::kAxis2];
+    row[7] = static_cast<double>(last_.status);
+  }
+
+  msg::ActuatorFrame initial_command() const { return msg::ActuatorFrame{}; }
+  Controller& controller() { return *controller_; }
+
+  nlohmann::json figures() const {
+    const double reduction = roll_ref_.rms() > 0 ? roll_.rms() / roll_ref_.rms() : 0.0;
+    return {{"roll_rms_rad", roll_.rms()},
+            {"roll_rms_unstabilized_rad", roll_ref_.rms()},
+            {"roll_reduction", reduction},
+            {"roll_max_rad", roll_.peak},
+            {"roll_max_unstabilized_rad", roll_ref_.peak},
+            {"precession_max_rad", precession_peak_},
+            {"precession_torque_max_Nm", torque_peak_},
+            {"wave_moment_rms_Nm", sea_.rms()},
+            {"statistics_from_s", s_.settle_s}};
+  }
+
+ private:
+  static models::ShipRollDamperParams locked(models::ShipRollDamperParams p) {
+    p.locked = true;
+    return p;
+  }
+
+  const ShipScene& s_;
+  SeaMoment sea_;
+  ShipInSea plant_, reference_;
+  dynamics::Rk4<ShipInSea> integ_, ref_integ_;
+  dynamics::SubstepDriver<dynamics::Rk4<ShipInSea>> driver_, ref_driver_;
+  ShipInSea::State x_, x_ref_;
+  sensors::Encoder encoder_;
+  sensors::SensorNoise roll_angle_noise_, roll_rate_noise_, precession_rate_noise_;
+  random::SeededRng rng_angle_, rng_rate_, rng_precession_;
+  std::unique_ptr<Controller> controller_;
+  std::int64_t settle_tick_;
+  msg::ActuatorFrame last_{};
+  RunningStats roll_, roll_ref_;
+  double precession_peak_{0.0}, torque_peak_{0.0};
+};
+
+bool read_scene(SceneReader& r, ShipScene& s) {
+  s.loop = read_loop_config(r, "rk4", {"rk4"});
+  auto& p = s.ship;
+  p.A = r.required("ship", "A", Range::positive(), "roll inertia of ship + installation [kg m²]");
+  p.c = r.required("ship", "c", Range::positive(), "roll stiffness m g GM [N m/rad]");
+  p.d1 = r.number("ship", "d1", 0.0, Range::non_negative(), "roll damping [N m s/rad]");
+  p.w = r.number("ship", "w", 0.0, Range::non_negative(), "wall-sided coefficient BM/(2 GM) [-]");
+  p.B = r.required("gyro", "B", Range::positive(), "case + rotor inertia about the precession axis [kg m²]");
+  p.Q = r.number("gyro", "Q", 0.0, Range::any(), "A^R + A^J - C^J of (10.4) [kg m²]");
+  p.q = r.required("gyro", "q", Range::non_negative(), "pendulous stiffness of the case G s [N m/rad]");
+  p.d2 = r.number("gyro", "d2", 0.0, Range::non_negative(),
+                  "viscous friction of the precession bearing (the brake is the controller's) [N m s/rad]");
+  p.H = r.required("gyro", "H", Range::positive(), "rotor spin momentum [N m s]");
+  p.beta_stop = kDeg * r.number("gyro", "beta_stop_deg", 70.0, Range::open_closed(0.0, 89.0),
+                                "hard end stops of the precession angle [deg]");
+  p.stop_frequency = r.number("gyro", "stop_frequency", 100.0, Range::positive(), "end-stop stiffness sqrt(k/B) [rad/s]");
+  p.stop_damping_ratio = r.number("gyro", "stop_damping_ratio", 1.0, Range::non_negative(), "end-stop damping [-]");
+  s.brake_full_Nms = r.number("gyro", "brake_full_Nms", 1e7, Range::positive(),
+                              "brake at precession_brake = 1 (safe state) [N m s/rad]");
+  if (const char* why = p.invalid_reason()) r.fail("ship", "A", why);
+
+  const std::string kind = r.choice("sea", "kind", "jonswap", {"regular", "pierson_moskowitz", "jonswap"}, "wave model");
+  s.sea.regular = kind == "regular";
+  if (s.sea.regular) {
+    s.sea.wave.E0 = r.required("sea", "E0", Range::non_negative(), "wave moment amplitude (14.9) [N m]");
+    s.sea.wave.omega = r.required("sea", "omega", Range::positive(), "wave frequency [rad/s]");
+  } else {
+    s.sea.spectrum.kind = kind == "jonswap" ? motion::WaveSpectrumParams::Kind::kJonswap
+                                            : motion::WaveSpectrumParams::Kind::kPiersonMoskowitz;
+    s.sea.spectrum.Hs = r.required("sea", "Hs", Range::positive(), "significant wave height [m]");
+    s.sea.spectrum.Tp = r.required("sea", "Tp", Range::positive(), "peak period [s]");
+    if (kind == "jonswap") {
+      s.sea.spectrum.gamma = r.number("sea", "gamma", 3.3, Range::closed(1.0, 10.0), "JONSWAP peak enhancement [-]");
+    }
+    s.sea.irregular.components = static_cast<int>(r.integer("sea", "components", 64, 1, 256, "harmonic components"));
+    s.sea.kappa = r.number("sea", "kappa", 1.0, Range::open_closed(0.0, 2.0), "effective wave-slope coefficient [-]");
+    if (const char* why = motion::WaveSpectrum::check(s.sea.spectrum)) r.fail("sea", "Hs", why);
+  }
+
+  s.sensors.roll_angle_noise_rad = r.number("sensors", "roll_angle_noise_rad", 1e-4, Range::non_negative(),
+                                            "roll angle noise, standard deviation per sample [rad]");
+  s.sensors.roll_rate_noise_density = r.number("sensors", "roll_rate_noise_density", 1e-4, Range::non_negative(),
+                                               "roll rate gyro noise density [rad/s/sqrt(Hz)]");
+  s.sensors.roll_rate_bias = r.number("sensors", "roll_rate_bias", 0.0, Range::closed(-0.1, 0.1),
+                                      "roll rate gyro bias [rad/s]");
+  s.sensors.precession_rate_noise_density = r.number("sensors", "precession_rate_noise_density", 1e-4,
+                                                     Range::non_negative(), "precession rate noise [rad/s/sqrt(Hz)]");
+  s.sensors.encoder_counts_per_rev = r.integer("sensors", "encoder_counts_per_rev", 65536, 16, 1 << 30,
+                                               "precession encoder resolution [counts/rev]");
+
+  auto& c = s.controller;
+  c.runtime.tick_period_ns = s.loop.tick_ns;
+  const std::string law = r.choice("controller", "law", "active", {"passive", "active"}, "control law");
+  c.mode = law == "passive" ? firmware::ShipRollDamperMode::kPassiveBrake : firmware::ShipRollDamperMode::kActive;
+  const double torque_limit = r.number("controller", "torque_limit_Nm", 2e5, Range::positive(), "precession torque limit [N m]");
+  if (c.mode == firmware::ShipRollDamperMode::kPassiveBrake) {
+    c.brake.d2 = r.number("controller", "brake_d2", 4.53e4, Range::non_negative(), "brake coefficient [N m s/rad]");
+    c.brake.torque_limit_Nm = torque_limit;
+    c.brake.B = p.B;
+  } else {
+    auto& a = c.active;
+    a.B = p.B;
+    a.H = p.H;
+    a.torque_limit_Nm = torque_limit;
+    a.roll_rate_gain = r.number("controller", "roll_rate_gain", p.H, Range::non_negative(),
+                                "M2 per rad/s of roll rate [N m s/rad]");
+    a.precession_damping = r.number("controller", "precession_damping", 8.36e4, Range::positive(),
+                                    "M2 per rad/s of precession rate [N m s/rad]");
+    a.centring_stiffness = r.number("controller", "centring_stiffness", 0.0, Range::non_negative(),
+                                    "M2 per rad of precession angle [N m/rad]");
+    a.beta_soft = kDeg * r.number("controller", "soft_limit_deg", 60.0, Range::open_closed(0.0, 89.0),
+                                  "soft limit of the precession angle [deg]");
+    a.soft_stiffness = r.number("controller", "soft_stiffness", 5e5, Range::non_negative(), "beyond the soft limit [N m/rad]");
+    a.beta_stop = p.beta_stop;
+    a.brake_deceleration = r.number("controller", "brake_deceleration", 2.0, Range::positive(),
+                                    "end-stop braking deceleration [rad/s²]");
+  }
+  s.settle_s = r.number("report", "settle_s", std::min(60.0, 0.2 * s.loop.duration_s),
+                        Range::closed(0.0, s.loop.duration_s), "statistics start after this time [s]");
+  const firmware::ConfigCheck check = Controller::check(c);
+  if (!check.ok) r.fail("controller", "law", std::string("refused by the controller's start-up check: ") + check.reason);
+  r.finish();
+  return r.ok();
+}
+
+}  // namespace
+
+int run_ship_roll_damper(SceneReader& reader, const RunRequest& req) {
+  auto scene = std::make_unique<ShipScene>();
+  if (!read_scene(reader, *scene)) return 2;
+  if (req.check_only) return 0;
+  auto device = std::make_unique<ShipRollDamperDevice>(*scene);
+  Recorder rec(ShipRollDamperDevice::columns(), scene->loop.ticks(), scene->loop.record_every);
+  const LoopOutcome outcome = run_closed_loop(*device, scene->loop, &rec, req.progress);
+  nlohmann::json report{{"scene", scene_summary(scene->loop, req.scene_path)},
+                        {"figures", device->figures()},
+                        {"timing", timing_summary(scene->loop, outcome)}};
+  report["timing"]["controller"] = controller_report(device->controller());
+  std::string error;
+  if (!write_run_outputs(req, scene->loop, rec, report, error)) {
+    std::fprintf(stderr, "gyrostab: %s\n", error.c_str());
+    return 3;
+  }
+  if (outcome.diverged) {
+    std::fprintf(stderr, "gyrostab: %s: the plant state became non-finite at tick %lld; outputs up to it are written\n",
+                 scene->loop.name.c_str(), static_cast<long long>(outcome.diverged_tick));
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace gyrostab::tools

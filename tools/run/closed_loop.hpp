@@ -1,0 +1,84 @@
+// The in-process closed loop (DESIGN §2), one tick:
+//   1. the plant samples its sensors: SensorFrame{tick k};
+//   2. the controller (firmware) steps on it and returns ActuatorFrame{tick k};
+//   3. the command computed from the frame of tick k is applied at tick k + latency (zero-order hold;
+//      until then the device's initial command), and the plant integrates [k, k + 1).
+// Allocation-free: the latency pipe is a fixed array, the recorder's table is sized before the loop.
+// A runtime guard stops at the first non-finite plant state and says at which tick.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <unistd.h>
+
+#include "firmware/msg/actuator_frame.hpp"
+#include "firmware/msg/sensor_frame.hpp"
+#include "tools/run/recorder.hpp"
+#include "tools/scene/loop_config.hpp"
+
+namespace gyrostab::tools {
+
+struct LoopOutcome {
+  std::int64_t ticks_run{0};
+  bool diverged{false};           // the plant state became non-finite
+  std::int64_t diverged_tick{-1};
+  double wall_s{0.0};
+};
+
+// Device concept:
+//   void sense(std::int64_t tick, msg::SensorFrame& out);
+//   void actuate(const msg::ActuatorFrame& cmd);
+//   void advance(std::int64_t tick);
+//   bool finite() const;
+//   void record(double* row) const;          // Device::columns() names, in order
+//   msg::ActuatorFrame initial_command() const;
+//   auto& controller();                      // step(tick, const SensorFrame*, ActuatorFrame&)
+template <class Device>
+LoopOutcome run_closed_loop(Device& device, const LoopConfig& cfg, Recorder* recorder, bool progress = false) {
+  LoopOutcome out;
+  const std::int64_t ticks = cfg.ticks();
+  const int latency = cfg.latency_ticks;
+  std::array<msg::ActuatorFrame, kMaxLatencyTicks + 1> pipe{};
+  msg::SensorFrame sensor{};
+  msg::ActuatorFrame command{};
+  msg::ActuatorFrame applied = device.initial_command();
+  const auto start = std::chrono::steady_clock::now();
+  const bool show = progress && isatty(STDERR_FILENO);
+  auto last_report = start;
+  for (std::int64_t k = 0; k < ticks; ++k) {
+    device.sense(k, sensor);
+    device.controller().step(static_cast<std::uint64_t>(k), &sensor, command);
+    if (latency == 0) {
+      applied = command;
+    } else {
+      pipe[static_cast<std::size_t>((k + latency) % (kMaxLatencyTicks + 1))] = command;
+      if (k >= latency) applied = pipe[static_cast<std::size_t>(k % (kMaxLatencyTicks + 1))];
+    }
+    device.actuate(applied);
+    device.advance(k);
+    out.ticks_run = k + 1;
+    if (!device.finite()) {
+      out.diverged = true;
+      out.diverged_tick = k;
+      break;
+    }
+    if (recorder && recorder->due(k + 1)) {
+      if (double* row = recorder->row(static_cast<double>(k + 1) * cfg.tick_s())) device.record(row);
+    }
+    if (show && (k & 0xFFFF) == 0) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_report > std::chrono::seconds(1)) {
+        last_report = now;
+        std::fprintf(stderr, "\r%s: %5.1f %% of %.0f s simulated", cfg.name.c_str(),
+                     100.0 * static_cast<double>(k) / static_cast<double>(ticks), cfg.duration_s);
+      }
+    }
+  }
+  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (show) std::fprintf(stderr, "\r%*s\r", 60, "");
+  return out;
+}
+
+}  // namespace gyrostab::tools

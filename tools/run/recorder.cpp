@@ -1,0 +1,39 @@
+#include "tools/run/recorder.hpp"
+
+#include <cstdio>
+
+namespace gyrostab::tools {
+
+Recorder::Recorder(std::vector<std::string> columns, std::int64_t ticks, int every)
+    : every_(every < 1 ? 1 : every) {
+  columns_.push_back("t_s");
+  for (auto& c : columns) columns_.push_back(std::move(c));
+  width_ = static_cast<std::int64_t>(columns_.size());
+  capacity_ = ticks / every_ + 1;
+  data_.assign(static_cast<std::size_t>(capacity_ * width_), 0.0);
+}
+
+bool Recorder::write_csv(const std::string& path, std::string& error) const {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) {
+    error = "cannot write " + path;
+    return false;
+  }
+  for (std::size_t c = 0; c < columns_.size(); ++c) std::fprintf(f, "%s%s", c ? "," : "", columns_[c].c_str());
+  std::fputc('\n', f);
+  for (std::int64_t r = 0; r < rows_; ++r) {
+    for (std::int64_t c = 0; c < width_; ++c) {
+      // %.17g: the CSV round-trips every double, so two runs compare bit for bit.
+      std::fprintf(f, "%s%.17g", c ? "," : "", data_[static_cast<std::size_t>(r * width_ + c)]);
+    }
+    std::fputc('\n', f);
+  }
+  const bool ok = std::fflush(f) == 0 && !std::ferror(f);
+  if (std::fclose(f) != 0 || !ok) {
+    error = "error writing " + path;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace gyrostab::tools

@@ -1,0 +1,60 @@
+#include "tools/run/run_output.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+namespace gyrostab::tools {
+
+nlohmann::json scene_summary(const LoopConfig& cfg, const std::string& scene_path) {
+  return {{"name", cfg.name},
+          {"file", scene_path},
+          {"device", cfg.device},
+          {"seed", cfg.seed},
+          {"duration_s", cfg.duration_s},
+          {"tick_ns", cfg.tick_ns},
+          {"plant_substeps", cfg.substeps},
+          {"latency_ticks", cfg.latency_ticks},
+          {"integrator", cfg.integrator}};
+}
+
+nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& o) {
+  nlohmann::json t{{"ticks", o.ticks_run},
+                   {"wall_s", o.wall_s},
+                   {"ticks_per_second", o.wall_s > 0 ? static_cast<double>(o.ticks_run) / o.wall_s : 0.0},
+                   {"real_time_factor", o.wall_s > 0 ? static_cast<double>(o.ticks_run) * cfg.tick_s() / o.wall_s : 0.0}};
+  if (o.diverged) t["diverged_at_tick"] = o.diverged_tick;
+  return t;
+}
+
+bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recorder& rec, const nlohmann::json& report,
+                       std::string& error) {
+  std::error_code ec;
+  std::filesystem::create_directories(req.out_dir, ec);
+  if (ec) {
+    error = "cannot create " + req.out_dir + ": " + ec.message();
+    return false;
+  }
+  {
+    std::ofstream f(req.out_dir + "/report.json");
+    f << report.dump(2) << "\n";
+    if (!f) {
+      error = "cannot write " + req.out_dir + "/report.json";
+      return false;
+    }
+  }
+  if (!rec.write_csv(req.out_dir + "/signals.csv", error)) return false;
+  if (cfg.plots) {
+    const char* here = std::getenv("GYROSTAB_PLOT_SCRIPT");
+    const std::string script = here ? here : GYROSTAB_SOURCE_DIR "/tools/plot/plot_run.py";
+    const std::string cmd = "/usr/bin/python3 '" + script + "' '" + req.out_dir + "' 2>&1";
+    if (std::system(cmd.c_str()) != 0) {
+      std::fprintf(stderr, "gyrostab: plots not written (needs /usr/bin/python3 with python3-matplotlib); "
+                           "report.json and signals.csv are complete\n");
+    }
+  }
+  return true;
+}
+
+}  // namespace gyrostab::tools

@@ -1,0 +1,33 @@
+// The part of a scene every device shares: [scene] name/device/duration/seed, [loop] tick, plant
+// sub-steps, latency, integrator, [output] recording. See docs/scenes.md.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "tools/scene/scene_reader.hpp"
+
+namespace gyrostab::tools {
+
+struct LoopConfig {
+  std::string name;                 // [scene] name
+  std::string device;               // [scene] device
+  double duration_s{10.0};          // [scene] duration_s
+  std::uint64_t seed{1};            // [scene] seed: every random stream of the run derives from it
+  std::int64_t tick_ns{1'000'000};  // [loop] tick_us × 1000: the controller's base tick
+  int substeps{1};                  // [loop] plant_substeps per tick
+  int latency_ticks{1};             // [loop] latency_ticks: command from sensor frame k applied at tick k + latency
+  std::string integrator;           // [loop] integrator (device default if empty)
+  int record_every{10};             // [output] record_every: CSV row every N ticks
+  bool plots{true};                 // [output] plots: PNG via /usr/bin/python3 + matplotlib
+
+  std::int64_t ticks() const;
+  double tick_s() const { return 1e-9 * static_cast<double>(tick_ns); }
+};
+
+inline constexpr int kMaxLatencyTicks = 16;
+
+LoopConfig read_loop_config(SceneReader& r, const char* default_integrator,
+                            std::initializer_list<std::string_view> integrators);
+
+}  // namespace gyrostab::tools
