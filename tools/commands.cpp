@@ -26,7 +26,7 @@ int run_scene(const RunRequest& req) {
       const int rc = d.run(reader, req);
       for (const auto& e : reader.errors()) std::fprintf(stderr, "%s\n", e.c_str());
       if (rc == 0 && req.check_only) std::printf("%s: ok\n", req.scene_path.c_str());
-      if (rc == 0 && !req.check_only) std::printf("%s: wrote %s/report.json, signals.csv\n", req.scene_path.c_str(),
+      if (rc == 0 && !req.check_only && req.write_outputs) std::printf("%s: wrote %s/report.json, signals.csv\n", req.scene_path.c_str(),
                                                   req.out_dir.c_str());
       if (rc == 2) std::fprintf(stderr, "%s: refused (%zu problem%s)\n", req.scene_path.c_str(),
                                 reader.errors().size(), reader.errors().size() == 1 ? "" : "s");

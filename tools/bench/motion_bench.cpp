@@ -29,7 +29,7 @@ static void BM_SeaRk4StepOfFourCalls64(benchmark::State& st) {
   motion::IrregularSeaParams p; p.components = 64; p.grid_period = 1e-3;
   const motion::IrregularSea<64> sea(motion::WaveSpectrum{}, p, rng);
   std::int64_t k = 0;
-  for (auto _ : st) { const double t = k * 1e-3; ++k;
+  for (auto _ : st) { const double t = static_cast<double>(k) * 1e-3; ++k;
     benchmark::DoNotOptimize(sea(t) + sea(t + 0.5e-3) + sea(t + 0.5e-3) + sea(t + 1e-3)); }
 }
 BENCHMARK(BM_SeaRk4StepOfFourCalls64);

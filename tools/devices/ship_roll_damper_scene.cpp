@@ -308,7 +308,7 @@ int run_ship_roll_damper(SceneReader& reader, const RunRequest& req) {
   if (req.check_only) return 0;
   auto device = std::make_unique<ShipRollDamperDevice>(*scene);
   Recorder rec(ShipRollDamperDevice::columns(), scene->loop.ticks(), scene->loop.record_every);
-  const LoopOutcome outcome = run_closed_loop(*device, scene->loop, &rec, req.progress);
+  const LoopOutcome outcome = run_requested(*device, scene->loop, rec, req);
   nlohmann::json report{{"scene", scene_summary(scene->loop, req.scene_path)},
                         {"figures", device->figures()},
                         {"timing", timing_summary(scene->loop, outcome)}};

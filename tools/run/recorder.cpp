@@ -13,21 +13,30 @@ Recorder::Recorder(std::vector<std::string> columns, std::int64_t ticks, int eve
   data_.assign(static_cast<std::size_t>(capacity_ * width_), 0.0);
 }
 
+std::string Recorder::csv() const {
+  std::string out;
+  for (std::size_t c = 0; c < columns_.size(); ++c) out += (c ? "," : "") + columns_[c];
+  out += '\n';
+  char buf[32];
+  for (std::int64_t r = 0; r < rows_; ++r) {
+    for (std::int64_t c = 0; c < width_; ++c) {
+      // %.17g: the CSV round-trips every double, so two runs compare bit for bit.
+      std::snprintf(buf, sizeof buf, "%s%.17g", c ? "," : "", data_[static_cast<std::size_t>(r * width_ + c)]);
+      out += buf;
+    }
+    out += '\n';
+  }
+  return out;
+}
+
 bool Recorder::write_csv(const std::string& path, std::string& error) const {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (!f) {
     error = "cannot write " + path;
     return false;
   }
-  for (std::size_t c = 0; c < columns_.size(); ++c) std::fprintf(f, "%s%s", c ? "," : "", columns_[c].c_str());
-  std::fputc('\n', f);
-  for (std::int64_t r = 0; r < rows_; ++r) {
-    for (std::int64_t c = 0; c < width_; ++c) {
-      // %.17g: the CSV round-trips every double, so two runs compare bit for bit.
-      std::fprintf(f, "%s%.17g", c ? "," : "", data_[static_cast<std::size_t>(r * width_ + c)]);
-    }
-    std::fputc('\n', f);
-  }
+  const std::string text = csv();
+  std::fwrite(text.data(), 1, text.size(), f);
   const bool ok = std::fflush(f) == 0 && !std::ferror(f);
   if (std::fclose(f) != 0 || !ok) {
     error = "error writing " + path;

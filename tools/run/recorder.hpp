@@ -28,6 +28,7 @@ class Recorder {
   double at(std::size_t row, std::size_t col) const { return data_[row * static_cast<std::size_t>(width_) + col]; }
 
   bool write_csv(const std::string& path, std::string& error) const;
+  std::string csv() const;
 
  private:
   std::vector<std::string> columns_;  // including "t_s"

@@ -30,6 +30,9 @@ nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& o) {
 
 bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recorder& rec, const nlohmann::json& report,
                        std::string& error) {
+  if (req.report_out) *req.report_out = report;
+  if (req.csv_out) *req.csv_out = rec.csv();
+  if (!req.write_outputs) return true;
   std::error_code ec;
   std::filesystem::create_directories(req.out_dir, ec);
   if (ec) {

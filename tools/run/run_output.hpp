@@ -16,13 +16,31 @@ struct RunRequest {
   std::string out_dir{"out"};
   bool check_only{false};  // validate the scene and stop
   bool progress{true};     // progress line on a terminal
+  // For tests and studies:
+  std::int64_t ticks{-1};            // run exactly this many ticks (the scene's duration otherwise)
+  bool write_outputs{true};          // false: keep report and CSV in memory only
+  void (*before_loop)(){nullptr};    // called after every allocation of the set-up, just before tick 0
+  void (*after_loop)(){nullptr};     // called right after the last tick
+  nlohmann::json* report_out{nullptr};  // receives report.json's content
+  std::string* csv_out{nullptr};        // receives signals.csv's content
 };
 
 // The "scene" and "timing" parts every device shares.
 nlohmann::json scene_summary(const LoopConfig& cfg, const std::string& scene_path);
 nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& outcome);
 
-// Writes report.json, signals.csv and (if cfg.plots) signals.png; returns false with `error` set.
+// Runs the loop under the request's tick limit and hooks.
+template <class Device>
+LoopOutcome run_requested(Device& device, LoopConfig cfg, Recorder& rec, const RunRequest& req) {
+  if (req.ticks >= 0) cfg.duration_s = static_cast<double>(req.ticks) * cfg.tick_s();
+  if (req.before_loop) req.before_loop();
+  const LoopOutcome o = run_closed_loop(device, cfg, &rec, req.progress);
+  if (req.after_loop) req.after_loop();
+  return o;
+}
+
+// Hands the report and CSV to the request (report_out, csv_out) and, if write_outputs, writes report.json,
+// signals.csv and (if cfg.plots) signals.png; returns false with `error` set.
 bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recorder& rec, const nlohmann::json& report,
                        std::string& error);
 

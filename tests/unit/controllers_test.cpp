@@ -1,0 +1,414 @@
+// The device controllers of firmware/app/ through their common API (controller_runtime.hpp): for each of the
+// ship roll damper (active and passive), monorail, servo gyro and power stabilizer — a good frame gives a
+// command with the right fields and values; the header echoes tick, time and sensor tick and counts the
+// sequence +1 per frame; a missing or NaN frame is held for one tick and then gives the safe state with the
+// reason bit; zero heap allocations over 1e6 steps. Then the runtime's own rules: refused configurations,
+// the multi-rate relation base tick / control / drive, start-up, recovery.
+// Expected torques are computed here from the book's formulas (the laws' headers), not from the laws.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+
+#include "firmware/app/monorail_controller.hpp"
+#include "firmware/app/power_stabilizer_controller.hpp"
+#include "firmware/app/servo_gyro_controller.hpp"
+#include "firmware/app/ship_roll_damper_controller.hpp"
+#include "firmware/control/law_status_bits.hpp"
+#include "firmware/msg/fault_bits.hpp"
+#include "tests/support/alloc_counter.hpp"
+
+namespace gyrostab::firmware {
+namespace {
+
+using msg::ActuatorFrame;
+using msg::FaultBit;
+using msg::SensorFrame;
+
+constexpr std::int64_t kTickNs = 1'000'000;
+
+// A plausible frame for tick k with every signal a device may read set, small and varying with k.
+SensorFrame good_frame(std::uint64_t k) {
+  const double x = static_cast<double>(k % 100) * 1e-5;
+  SensorFrame f{};
+  f.tick = k;
+  f.time_ns = static_cast<std::int64_t>(k) * kTickNs;
+  f.sample_time_ns = f.time_ns;
+  f.sequence = static_cast<std::uint32_t>(k + 7);
+  f.carrier_angle_rad[msg::kRoll] = 0.02 + x;
+  f.carrier_rate_rad_s[msg::kRoll] = 0.01 - x;
+  f.gimbal_angle_rad[msg::kAxis1] = 0.01 + x;
+  f.gimbal_angle_rad[msg::kAxis2] = 0.03 - x;
+  f.gimbal_rate_rad_s[msg::kAxis1] = 0.02 + x;
+  f.gimbal_rate_rad_s[msg::kAxis2] = -0.01 + x;
+  f.motor_current_A[msg::kAxis1] = 0.1;
+  f.motor_current_A[msg::kAxis2] = -0.1;
+  f.rotor_speed_rad_s = 500.0;
+  return f;
+}
+
+bool is_safe_command(const ActuatorFrame& c) {
+  return c.gimbal_torque_Nm[0] == 0.0 && c.gimbal_torque_Nm[1] == 0.0 && c.motor_voltage_V[0] == 0.0 &&
+         c.motor_voltage_V[1] == 0.0 && c.precession_brake == 1.0 && msg::has(c.status, FaultBit::kSafeState);
+}
+
+// ------------------------------------------------------------------------------ one traits type per device
+// Each: the controller type, a default Config, and the expected command of a fresh controller on frame f
+// (first control run; for the servo gyro the PI integral is still zero then).
+
+struct ShipActive {
+  using Controller = ShipRollDamperController;
+  static Controller::Config config() { return {}; }
+  static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
+    const ActivePrecessionParams p{};
+    const double phi_rate = f.carrier_rate_rad_s[msg::kRoll], beta = f.gimbal_angle_rad[msg::kAxis2];
+    const double beta_rate = f.gimbal_rate_rad_s[msg::kAxis2];
+    // Active law inside the soft limit, not braking: k_r cosβ φ' − d_c β' − k_c β.
+    const double M2 = p.roll_rate_gain * std::cos(beta) * phi_rate - p.precession_damping * beta_rate -
+                      p.centring_stiffness * beta;
+    EXPECT_NEAR(c.gimbal_torque_Nm[msg::kAxis2], M2, 1e-12 * std::abs(M2));
+    EXPECT_EQ(c.gimbal_torque_Nm[msg::kAxis1], 0.0);
+    EXPECT_EQ(c.precession_brake, 0.0);
+  }
+};
+
+struct ShipPassive {
+  using Controller = ShipRollDamperController;
+  static Controller::Config config() {
+    Controller::Config c{};
+    c.mode = ShipRollDamperMode::kPassiveBrake;
+    return c;
+  }
+  static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
+    const double M2 = -PrecessionBrakeParams{}.d2 * f.gimbal_rate_rad_s[msg::kAxis2];  // −d2 β'
+    EXPECT_DOUBLE_EQ(c.gimbal_torque_Nm[msg::kAxis2], M2);
+    EXPECT_EQ(c.gimbal_torque_Nm[msg::kAxis1], 0.0);
+    EXPECT_EQ(c.precession_brake, 0.0);
+  }
+};
+
+struct Monorail {
+  using Controller = MonorailController;
+  static Controller::Config config() { return {}; }
+  static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
+    const MonorailMotorParams p{};
+    const double M2 =
+        p.k * f.carrier_angle_rad[msg::kRoll] - p.d * f.gimbal_rate_rad_s[msg::kAxis2];  // (14.2)
+    EXPECT_DOUBLE_EQ(c.gimbal_torque_Nm[msg::kAxis2], M2);
+    EXPECT_EQ(c.gimbal_torque_Nm[msg::kAxis1], 0.0);
+    EXPECT_EQ(c.precession_brake, 0.0);
+  }
+};
+
+struct ServoGyro {
+  using Controller = ServoGyroController;
+  static Controller::Config config() {
+    Controller::Config c{};
+    c.reference = 0.02;  // Ω [rad/s], small so the first command is not saturated
+    return c;
+  }
+  static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
+    const ServoGyroParams p{};
+    const double beta = f.gimbal_angle_rad[msg::kAxis2];
+    // First run: k_p (Ω − β') − H cosβ α' (14.43), integral still 0.
+    const double M2 = p.rate_kp * (0.02 - f.gimbal_rate_rad_s[msg::kAxis2]) -
+                      p.H * std::cos(beta) * f.gimbal_rate_rad_s[msg::kAxis1];
+    EXPECT_NEAR(c.gimbal_torque_Nm[msg::kAxis2], M2, 1e-12 * std::abs(M2));
+    EXPECT_EQ(c.gimbal_torque_Nm[msg::kAxis1], 0.0);
+    EXPECT_EQ(c.precession_brake, 0.0);
+  }
+};
+
+struct PowerStabilizer {
+  using Controller = PowerStabilizerController;
+  static Controller::Config config() { return {}; }
+  static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
+    const PowerStabilizerConfig p{};
+    const double alpha = f.gimbal_angle_rad[msg::kAxis1], beta = f.gimbal_angle_rad[msg::kAxis2];
+    const double alpha_rate = f.gimbal_rate_rad_s[msg::kAxis1], beta_rate = f.gimbal_rate_rad_s[msg::kAxis2];
+    // (14.19) + rate damping: M1 = −k1 β − d1 α', M2 = k2 α − d2 β'.
+    EXPECT_DOUBLE_EQ(c.gimbal_torque_Nm[msg::kAxis1], -p.k1 * beta - p.d1 * alpha_rate);
+    EXPECT_DOUBLE_EQ(c.gimbal_torque_Nm[msg::kAxis2], p.k2 * alpha - p.d2 * beta_rate);
+    EXPECT_EQ(c.precession_brake, 0.0);
+  }
+};
+
+template <class T>
+class ControllerTest : public ::testing::Test {};
+using Devices = ::testing::Types<ShipActive, ShipPassive, Monorail, ServoGyro, PowerStabilizer>;
+TYPED_TEST_SUITE(ControllerTest, Devices);
+
+TYPED_TEST(ControllerTest, DefaultConfigIsAccepted) {
+  const auto cfg = TypeParam::config();
+  const ConfigCheck c = TypeParam::Controller::check(cfg);
+  EXPECT_TRUE(c.ok) << c.reason;
+  typename TypeParam::Controller ctl(cfg);
+  EXPECT_TRUE(ctl.armed());
+}
+
+TYPED_TEST(ControllerTest, GoodFrameGivesTheLawsCommandWithTheHeader) {
+  typename TypeParam::Controller ctl(TypeParam::config());
+  const SensorFrame f = good_frame(0);
+  ActuatorFrame out{};
+  ctl.step(0, &f, out);
+  TypeParam::expect_command(f, out);
+  EXPECT_EQ(out.tick, 0u);
+  EXPECT_EQ(out.sensor_tick, 0u);
+  EXPECT_EQ(out.sequence, 0u);
+  EXPECT_EQ(out.time_ns, 0);
+  EXPECT_EQ(out.status & 0xFFFFu, 0u) << "no fault-monitor bit on a good frame";
+  EXPECT_EQ(out.motor_voltage_V[0], 0.0);  // drive disabled by default: torque-mode drives
+  EXPECT_EQ(out.motor_voltage_V[1], 0.0);
+}
+
+TYPED_TEST(ControllerTest, HeaderEchoesTheTickAndCountsTheSequence) {
+  typename TypeParam::Controller ctl(TypeParam::config());
+  ActuatorFrame out{};
+  for (std::uint64_t k = 0; k < 50; ++k) {
+    const SensorFrame f = good_frame(k);
+    ctl.step(k, &f, out);
+    ASSERT_EQ(out.tick, k);
+    ASSERT_EQ(out.sensor_tick, k);
+    ASSERT_EQ(out.time_ns, static_cast<std::int64_t>(k) * kTickNs);
+    ASSERT_EQ(out.sequence, static_cast<std::uint32_t>(k));
+    ASSERT_FALSE(msg::has(out.status, FaultBit::kSafeState));
+  }
+  EXPECT_EQ(ctl.control_counters().runs, 50u);
+  EXPECT_EQ(ctl.fault_counters().good_frames, 50u);
+  EXPECT_EQ(ctl.ticks_run(), 50u);
+}
+
+// Ticks 0..4 good, then `bad` at ticks 5 and 6: 5 is held (the command from frame 4), 6 is the safe state
+// with `reason`; the sequence keeps counting.
+template <class Traits>
+void expect_hold_then_safe(const SensorFrame* bad5, const SensorFrame* bad6, FaultBit reason) {
+  typename Traits::Controller ctl(Traits::config());
+  ActuatorFrame out{};
+  for (std::uint64_t k = 0; k < 5; ++k) {
+    const SensorFrame f = good_frame(k);
+    ctl.step(k, &f, out);
+  }
+  const ActuatorFrame before = out;
+  ctl.step(5, bad5, out);
+  EXPECT_TRUE(msg::has(out.status, FaultBit::kHoldingLastGood));
+  EXPECT_TRUE(msg::has(out.status, reason));
+  EXPECT_FALSE(msg::has(out.status, FaultBit::kSafeState));
+  EXPECT_EQ(out.sensor_tick, 4u) << "computed from the held frame of tick 4";
+  EXPECT_EQ(out.tick, 5u);
+  EXPECT_EQ(out.sequence, 5u);
+  EXPECT_EQ(out.precession_brake, 0.0);
+  EXPECT_TRUE(std::isfinite(out.gimbal_torque_Nm[msg::kAxis2]));
+  if constexpr (!std::is_same_v<Traits, ServoGyro>) {  // static laws: the same frame gives the same torque
+    EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis2], before.gimbal_torque_Nm[msg::kAxis2]);
+  }
+  ctl.step(6, bad6, out);
+  EXPECT_TRUE(is_safe_command(out));
+  EXPECT_TRUE(msg::has(out.status, reason));
+  EXPECT_FALSE(msg::has(out.status, FaultBit::kHoldingLastGood));
+  EXPECT_EQ(out.sequence, 6u);
+  // Latched: good frames do not release it without acknowledge().
+  const SensorFrame f7 = good_frame(7);
+  ctl.step(7, &f7, out);
+  EXPECT_TRUE(is_safe_command(out));
+  EXPECT_EQ(ctl.fault_counters().trips, 1u);
+}
+
+TYPED_TEST(ControllerTest, MissingFrameIsHeldOneTickThenSafeStateWithTheReason) {
+  expect_hold_then_safe<TypeParam>(nullptr, nullptr, FaultBit::kSensorMissing);
+}
+
+TYPED_TEST(ControllerTest, NaNFrameIsHeldOneTickThenSafeStateWithTheReason) {
+  SensorFrame f5 = good_frame(5), f6 = good_frame(6);
+  f5.gimbal_rate_rad_s[msg::kAxis2] = std::numeric_limits<double>::quiet_NaN();
+  f6.carrier_rate_rad_s[msg::kRoll] = std::numeric_limits<double>::quiet_NaN();
+  expect_hold_then_safe<TypeParam>(&f5, &f6, FaultBit::kSensorNonFinite);
+}
+
+TYPED_TEST(ControllerTest, BeforeTheFirstFrameTheOutputIsTheSafeCommand) {
+  typename TypeParam::Controller ctl(TypeParam::config());
+  ActuatorFrame out{};
+  ctl.step(0, nullptr, out);
+  EXPECT_TRUE(is_safe_command(out));
+  EXPECT_TRUE(msg::has(out.status, FaultBit::kAwaitingFirstFrame));
+  const SensorFrame f = good_frame(1);
+  ctl.step(1, &f, out);
+  EXPECT_FALSE(msg::has(out.status, FaultBit::kSafeState));
+  TypeParam::expect_command(f, out);
+}
+
+TYPED_TEST(ControllerTest, AcknowledgeThenAGoodFrameRestartsTheLawFromAFreshState) {
+  typename TypeParam::Controller ctl(TypeParam::config());
+  ActuatorFrame out{};
+  for (std::uint64_t k = 0; k < 3; ++k) {
+    const SensorFrame f = good_frame(k);
+    ctl.step(k, &f, out);
+  }
+  ctl.step(3, nullptr, out);
+  ctl.step(4, nullptr, out);
+  ASSERT_TRUE(is_safe_command(out));
+  ctl.acknowledge();
+  const SensorFrame f = good_frame(5);
+  ctl.step(5, &f, out);
+  EXPECT_FALSE(msg::has(out.status, FaultBit::kSafeState));
+  EXPECT_EQ(ctl.fault_counters().recoveries, 1u);
+  TypeParam::expect_command(f, out);  // like a fresh controller: the law state was reset in the safe state
+}
+
+TYPED_TEST(ControllerTest, ZeroHeapAllocationsOverAMillionSteps) {
+  typename TypeParam::Controller ctl(TypeParam::config());
+  ActuatorFrame out{};
+  double sink = 0.0;
+  SensorFrame f = good_frame(0);
+  testing::AllocationCounter c;
+  for (std::uint64_t k = 0; k < 1'000'000; ++k) {
+    f = good_frame(k);
+    ctl.step(k, (k % 1000 == 999) ? nullptr : &f, out);  // an occasional missing frame: the holding path too
+    sink += out.gimbal_torque_Nm[msg::kAxis2];
+  }
+  EXPECT_EQ(c.count(), 0u);
+  EXPECT_TRUE(std::isfinite(sink));
+  EXPECT_EQ(ctl.fault_counters().held_ticks, 1000u);
+  EXPECT_EQ(ctl.fault_counters().trips, 0u);
+}
+
+// ------------------------------------------------------------------------------------- the runtime's rules
+
+TEST(ControllerRuntime, ARefusedMonorailGainGivesTheBoundsAndOnlyTheSafeCommand) {
+  MonorailConfig cfg{};
+  cfg.law.k = 1001.0;  // below the window 1112 < k < 14388 (digest §3.1)
+  const ConfigCheck c = MonorailController::check(cfg);
+  EXPECT_FALSE(c.ok);
+  EXPECT_NEAR(c.lower, 1112.0, 0.5);
+  EXPECT_NEAR(c.upper, 14388.0, 0.5);
+  MonorailController ctl(cfg);
+  EXPECT_FALSE(ctl.armed());
+  ActuatorFrame out{};
+  for (std::uint64_t k = 0; k < 5; ++k) {
+    const SensorFrame f = good_frame(k);
+    ctl.step(k, &f, out);
+    ASSERT_TRUE(is_safe_command(out));
+    ASSERT_TRUE((out.status & bit(LawStatusBit::kConfigRefused)) != 0u);
+    ASSERT_EQ(out.sequence, static_cast<std::uint32_t>(k));
+  }
+  EXPECT_EQ(ctl.control_counters().runs, 0u);
+}
+
+TEST(ControllerRuntime, ARefusedPowerStabilizerGainReportsTheGainMargin) {
+  PowerStabilizerControllerConfig cfg{};
+  cfg.loops.k1 = cfg.loops.k2 = 40.0;  // above k_max = 28.12 N m/rad for d = 0.5 (S2 case)
+  const ConfigCheck c = PowerStabilizerController::check(cfg);
+  EXPECT_FALSE(c.ok);
+  EXPECT_LT(c.value, 1.0) << "gain margin sigma_max";
+  EXPECT_NEAR(c.upper, 28.12, 0.01);
+}
+
+TEST(ControllerRuntime, DivisorsMustNestAndThePeriodMustBePositive) {
+  MonorailConfig cfg{};
+  cfg.runtime.control_divisor = 10;
+  cfg.runtime.drive_divisor = 3;
+  EXPECT_FALSE(MonorailController::check(cfg).ok);
+  cfg.runtime.drive_divisor = 5;
+  EXPECT_TRUE(MonorailController::check(cfg).ok);
+  cfg.runtime.tick_period_ns = 0;
+  EXPECT_FALSE(MonorailController::check(cfg).ok);
+}
+
+TEST(ControllerRuntime, FastBaseTickRunsTheLawEveryTenthTickAndTheDriveEveryTick) {
+  // Base 100 µs: law at 1 kHz (control_divisor 10), current loop at 10 kHz (drive_divisor 1). The torque
+  // changes only on control ticks (k ≡ 0 mod 10, held in between); the voltage is recomputed every tick.
+  MonorailConfig cfg{};
+  cfg.runtime.tick_period_ns = 100'000;
+  cfg.runtime.control_divisor = 10;
+  cfg.runtime.drive_divisor = 1;
+  cfg.drive.enabled = true;
+  cfg.drive.axis[msg::kAxis2].bandwidth_rad_s = 2000.0;        // ω_c T_d = 0.2 ≤ ln(4/3)
+  cfg.drive.axis[msg::kAxis2].torque_constant_Nm_per_A = 1e3;  // i_ref = M2/k_t ≈ 0.1 A: no saturation
+  ASSERT_TRUE(MonorailController::check(cfg).ok) << MonorailController::check(cfg).reason;
+  MonorailController ctl(cfg);
+  ActuatorFrame out{};
+  double torque_at_last_control = 0.0, last_voltage = 0.0;
+  int voltage_changes = 0;
+  for (std::uint64_t k = 0; k < 100; ++k) {
+    SensorFrame f = good_frame(k);
+    f.time_ns = static_cast<std::int64_t>(k) * 100'000;
+    f.carrier_angle_rad[msg::kRoll] = 0.01 + 1e-4 * static_cast<double>(k);  // φ changes every tick
+    f.motor_current_A[msg::kAxis2] = 1e-3 * static_cast<double>(k % 7);      // and so does the current
+    ctl.step(k, &f, out);
+    ASSERT_EQ(out.time_ns, static_cast<std::int64_t>(k) * 100'000);
+    if (k % 10 == 0) {
+      torque_at_last_control = out.gimbal_torque_Nm[msg::kAxis2];
+      ASSERT_DOUBLE_EQ(torque_at_last_control,
+                       7750.0 * f.carrier_angle_rad[msg::kRoll] - 200.0 * f.gimbal_rate_rad_s[msg::kAxis2]);
+      ASSERT_EQ(out.sensor_tick, k);
+    } else {
+      ASSERT_EQ(out.gimbal_torque_Nm[msg::kAxis2], torque_at_last_control) << "held between control runs";
+      ASSERT_EQ(out.sensor_tick, k - k % 10) << "the frame the held torque came from";
+    }
+    if (out.motor_voltage_V[msg::kAxis2] != last_voltage) ++voltage_changes;
+    last_voltage = out.motor_voltage_V[msg::kAxis2];
+  }
+  EXPECT_EQ(ctl.control_counters().runs, 10u);
+  EXPECT_TRUE(ctl.has_drive_task());
+  EXPECT_EQ(ctl.drive_counters().runs, 100u);
+  EXPECT_GT(voltage_changes, 90) << "the current loop acts every base tick";
+  EXPECT_FALSE((out.status & bit(LawStatusBit::kDriveVoltageSaturated)) != 0u);
+  EXPECT_NE(out.motor_voltage_V[msg::kAxis2], 0.0);
+}
+
+TEST(ControllerRuntime, TheCurrentLoopTurnsTheTorqueIntoAVoltageOfTheSameSign) {
+  // Monorail at a constant tilt: M2 = k φ > 0. The current loop drives i toward M2/k_t with the measured
+  // current held at 0 (an open winding): the voltage rises and saturates at +voltage_limit.
+  MonorailConfig cfg{};
+  cfg.drive.enabled = true;
+  cfg.drive.axis[msg::kAxis2].bandwidth_rad_s = 200.0;  // ω_c T = 0.2 at 1 ms
+  MonorailController ctl(cfg);
+  ActuatorFrame out{};
+  for (std::uint64_t k = 0; k < 200; ++k) {
+    SensorFrame f = good_frame(k);
+    f.carrier_angle_rad[msg::kRoll] = 0.05;
+    f.gimbal_rate_rad_s[msg::kAxis2] = 0.0;
+    f.motor_current_A[msg::kAxis2] = 0.0;
+    ctl.step(k, &f, out);
+  }
+  EXPECT_GT(out.gimbal_torque_Nm[msg::kAxis2], 0.0);
+  EXPECT_EQ(out.motor_voltage_V[msg::kAxis2], cfg.drive.axis[msg::kAxis2].voltage_limit_V);
+  EXPECT_TRUE((out.status & bit(LawStatusBit::kDriveVoltageSaturated)) != 0u);
+  EXPECT_EQ(out.motor_voltage_V[msg::kAxis1], 0.0) << "only the device's axis is driven";
+}
+
+TEST(ControllerRuntime, ActiveShipBeyondTheSoftLimitReportsItAndBrakesTowardTheStop) {
+  ShipRollDamperController ctl(ShipRollDamperConfig{});
+  const ActivePrecessionParams p{};
+  ActuatorFrame out{};
+  SensorFrame f = good_frame(0);
+  f.gimbal_angle_rad[msg::kAxis2] = p.beta_soft + 0.02;
+  f.gimbal_rate_rad_s[msg::kAxis2] = 0.5;  // moving out beyond the limit: braking
+  ctl.step(0, &f, out);
+  EXPECT_TRUE((out.status & bit(LawStatusBit::kBeyondSoftLimit)) != 0u);
+  EXPECT_TRUE((out.status & bit(LawStatusBit::kEndStopBraking)) != 0u);
+  EXPECT_LT(out.gimbal_torque_Nm[msg::kAxis2], 0.0);
+  EXPECT_EQ(out.precession_brake, 0.0) << "the law brakes with torque, never with the holding brake";
+}
+
+TEST(ControllerRuntime, ServoGyroTorqueDemandBecomesARateReference) {
+  // Demand M1 = −0.01 N m on axis 1 ⇒ Ω = −M1/(H cosβ) = 0.01/cos(0.03) rad/s; first command k_p (Ω − β') +
+  // ff.
+  ServoGyroConfig cfg{};
+  cfg.reference_kind = ServoGyroReference::kAxis1Torque;
+  cfg.reference = -0.01;
+  ServoGyroController ctl(cfg);
+  const SensorFrame f = good_frame(0);
+  ActuatorFrame out{};
+  ctl.step(0, &f, out);
+  const ServoGyroParams p{};
+  const double beta = f.gimbal_angle_rad[msg::kAxis2];
+  const double omega = 0.01 / (p.H * std::cos(beta));
+  const double M2 = p.rate_kp * (omega - f.gimbal_rate_rad_s[msg::kAxis2]) -
+                    p.H * std::cos(beta) * f.gimbal_rate_rad_s[msg::kAxis1];
+  EXPECT_NEAR(out.gimbal_torque_Nm[msg::kAxis2], M2, 1e-12);
+}
+
+}  // namespace
+}  // namespace gyrostab::firmware

@@ -1,0 +1,88 @@
+// Broken scene files get a message naming the file, line and key, and are refused before running.
+#include "tools/scene/scene_reader.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tools/commands.hpp"
+
+namespace gyrostab {
+namespace {
+
+using tools::Range;
+using tools::SceneReader;
+
+bool contains(const std::vector<std::string>& errors, const std::string& what) {
+  for (const auto& e : errors)
+    if (e.find(what) != std::string::npos) return true;
+  return false;
+}
+
+TEST(SceneReader, InvalidTomlIsReportedWithLineAndColumn) {
+  SceneReader r;
+  EXPECT_FALSE(r.parse("[ship]\nA = 3.2e7\nc = = 5\n", "bad.toml"));
+  ASSERT_EQ(r.errors().size(), 1u);
+  EXPECT_NE(r.errors()[0].find("bad.toml:3:"), std::string::npos) << r.errors()[0];
+}
+
+TEST(SceneReader, OutOfRangeValueNamesLineSectionKeyAndBound) {
+  SceneReader r;
+  ASSERT_TRUE(r.parse("[ship]\n\nA = -3.2e7\n", "s.toml"));
+  const double A = r.required("ship", "A", Range::positive(), "roll inertia [kg m²]");
+  EXPECT_TRUE(std::isnan(A));
+  ASSERT_EQ(r.errors().size(), 1u);
+  EXPECT_NE(r.errors()[0].find("s.toml:3: [ship] A: = -3.2e+07 is out of range: must be > 0 (roll inertia"),
+            std::string::npos)
+      << r.errors()[0];
+}
+
+TEST(SceneReader, MissingWrongTypeAndNonFiniteAreRefused) {
+  SceneReader r;
+  ASSERT_TRUE(r.parse("[ship]\nc = \"big\"\nd1 = nan\nw = inf\n", "s.toml"));
+  r.required("ship", "A", Range::positive(), "roll inertia");
+  r.required("ship", "c", Range::positive(), "stiffness");
+  r.number("ship", "d1", 0.0, Range::non_negative(), "damping");
+  r.number("ship", "w", 0.0, Range::non_negative(), "wall-sided");
+  EXPECT_TRUE(contains(r.errors(), "[ship] A is missing"));
+  EXPECT_TRUE(contains(r.errors(), "s.toml:2: [ship] c: must be a number"));
+  EXPECT_TRUE(contains(r.errors(), "s.toml:3: [ship] d1: = nan is out of range"));
+  EXPECT_TRUE(contains(r.errors(), "s.toml:4: [ship] w: = inf is out of range"));
+}
+
+TEST(SceneReader, UnknownKeysAndSectionsAreRefusedNotIgnored) {
+  SceneReader r;
+  ASSERT_TRUE(r.parse("[ship]\nA = 1.0\nAa = 2.0\n[shipp]\nx = 1\n", "s.toml"));
+  r.required("ship", "A", Range::positive(), "roll inertia");
+  r.finish();
+  EXPECT_TRUE(contains(r.errors(), "s.toml:3: unknown key [ship] Aa (known: A)"));
+  EXPECT_TRUE(contains(r.errors(), "unknown section [shipp]"));
+}
+
+TEST(SceneReader, ChoiceListsTheAllowedValues) {
+  SceneReader r;
+  ASSERT_TRUE(r.parse("[sea]\nkind = \"stormy\"\n", "s.toml"));
+  r.choice("sea", "kind", "jonswap", {"regular", "jonswap"}, "wave model");
+  EXPECT_TRUE(contains(r.errors(), "s.toml:2: [sea] kind: = \"stormy\" is not one of \"regular\" \"jonswap\""));
+}
+
+// A whole scene: a physically impossible ship (negative inertia) is refused by `check` with exit code 2.
+TEST(SceneCheck, ShippedScenesPassAndBrokenOnesAreRefused) {
+  tools::RunRequest req;
+  req.check_only = true;
+  req.scene_path = GYROSTAB_SOURCE_DIR "/sim/scenes/ship-roll-damper-active.toml";
+  EXPECT_EQ(tools::run_scene(req), 0);
+
+  const std::string broken = ::testing::TempDir() + "/broken.toml";
+  {
+    std::FILE* f = std::fopen(broken.c_str(), "w");
+    std::fputs("[scene]\ndevice = \"ship_roll_damper\"\n[ship]\nA = -1\nc = 1e7\n[gyro]\nB = 1.5e4\nq = 1350\n"
+               "H = 1e6\n[sea]\nkind = \"regular\"\nE0 = 1e5\nomega = 0.6\n", f);
+    std::fclose(f);
+  }
+  req.scene_path = broken;
+  EXPECT_EQ(tools::run_scene(req), 2);
+  req.scene_path = ::testing::TempDir() + "/does-not-exist.toml";
+  EXPECT_EQ(tools::run_scene(req), 2);
+}
+
+}  // namespace
+}  // namespace gyrostab
