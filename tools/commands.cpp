@@ -2,6 +2,8 @@
 
 #include <cstdio>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "tools/devices/scene_device.hpp"
 
@@ -10,34 +12,66 @@ namespace {
 
 constexpr DeviceEntry kDevices[] = {
     {"ship_roll_damper", run_ship_roll_damper},
+    {"power_stabilizer", run_power_stabilizer},
 };
+
+// The entry of the scene's [scene] device; nullptr (the problem added to the reader) if there is none.
+const DeviceEntry* find_device(SceneReader& reader) {
+  const std::string device = reader.text("scene", "device", "", "device model");
+  for (const DeviceEntry& d : kDevices) {
+    if (device == d.name) return &d;
+  }
+  std::string known;
+  for (const DeviceEntry& d : kDevices) known += std::string(known.empty() ? "" : ", ") + d.name;
+  reader.fail("scene", "device", "= \"" + device + "\" is not a known device (" + known + ")");
+  return nullptr;
+}
+
+void print_problems(const SceneReader& reader) {
+  for (const auto& e : reader.errors()) std::fprintf(stderr, "%s\n", e.c_str());
+}
 
 }  // namespace
 
 int run_scene(const RunRequest& req) {
   SceneReader reader;
   if (!reader.open(req.scene_path)) {
-    for (const auto& e : reader.errors()) std::fprintf(stderr, "%s\n", e.c_str());
+    print_problems(reader);
     return 2;
   }
-  const std::string device = reader.text("scene", "device", "", "device model");
-  for (const DeviceEntry& d : kDevices) {
-    if (device == d.name) {
-      const int rc = d.run(reader, req);
-      for (const auto& e : reader.errors()) std::fprintf(stderr, "%s\n", e.c_str());
-      if (rc == 0 && req.check_only) std::printf("%s: ok\n", req.scene_path.c_str());
-      if (rc == 0 && !req.check_only && req.write_outputs) std::printf("%s: wrote %s/report.json, signals.csv\n", req.scene_path.c_str(),
-                                                  req.out_dir.c_str());
-      if (rc == 2) std::fprintf(stderr, "%s: refused (%zu problem%s)\n", req.scene_path.c_str(),
-                                reader.errors().size(), reader.errors().size() == 1 ? "" : "s");
-      return rc;
-    }
+  const DeviceEntry* d = find_device(reader);
+  if (d == nullptr) {
+    print_problems(reader);
+    return 2;
   }
-  std::string known;
-  for (const DeviceEntry& d : kDevices) known += std::string(known.empty() ? "" : ", ") + d.name;
-  reader.fail("scene", "device", "= \"" + device + "\" is not a known device (" + known + ")");
-  for (const auto& e : reader.errors()) std::fprintf(stderr, "%s\n", e.c_str());
-  return 2;
+  const int rc = d->run(reader, req);
+  print_problems(reader);
+  if (rc == 0 && req.check_only) std::printf("%s: ok\n", req.scene_path.c_str());
+  if (rc == 0 && !req.check_only && req.write_outputs) {
+    std::printf("%s: wrote %s/report.json, signals.csv\n", req.scene_path.c_str(), req.out_dir.c_str());
+  }
+  if (rc == 2) std::fprintf(stderr, "%s: refused (%zu problem%s)\n", req.scene_path.c_str(),
+                            reader.errors().size(), reader.errors().size() == 1 ? "" : "s");
+  return rc;
+}
+
+int check_scene_text(std::string_view text, const std::string& name, std::vector<std::string>* problems) {
+  SceneReader reader;
+  RunRequest req;
+  req.scene_path = name;
+  req.check_only = true;
+  req.progress = false;
+  req.write_outputs = false;
+  int rc = 2;
+  if (reader.parse(text, name)) {
+    if (const DeviceEntry* d = find_device(reader)) rc = d->run(reader, req);
+  }
+  if (problems != nullptr) {
+    problems->insert(problems->end(), reader.errors().begin(), reader.errors().end());
+  } else {
+    print_problems(reader);
+  }
+  return rc;
 }
 
 }  // namespace gyrostab::tools

@@ -1,11 +1,21 @@
 // `gyrostab run SCENE [--out DIR]` and `gyrostab check SCENE`: dispatch on the scene's [scene] device.
 #pragma once
 
+#include <string>
+#include <string_view>
+#include <vector>
+
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {
 
 // Exit code: 0 ok, 2 scene refused (every problem printed), 3 run failed.
 int run_scene(const RunRequest& request);
+
+// `gyrostab check` on a scene held in memory (tests, the fuzz target tests/fuzz/scene_fuzz.cpp): parse the
+// text (`name` stands for the file in messages), find the [scene] device and run its scene validation
+// (parameters and the controller's start-up checks) without building or running anything. Returns 0 (valid)
+// or 2 (refused); the problems go to `problems` if given, else to stderr. Never throws on bad input.
+int check_scene_text(std::string_view text, const std::string& name, std::vector<std::string>* problems = nullptr);
 
 }  // namespace gyrostab::tools

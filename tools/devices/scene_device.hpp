@@ -17,5 +17,6 @@ struct DeviceEntry {
 };
 
 int run_ship_roll_damper(SceneReader& reader, const RunRequest& request);
+int run_power_stabilizer(SceneReader& reader, const RunRequest& request);
 
 }  // namespace gyrostab::tools

@@ -295,7 +295,7 @@ bool read_scene(SceneReader& r, ShipScene& s) {
   s.settle_s = r.number("report", "settle_s", std::min(60.0, 0.2 * s.loop.duration_s),
                         Range::closed(0.0, s.loop.duration_s), "statistics start after this time [s]");
   const firmware::ConfigCheck check = Controller::check(c);
-  if (!check.ok) r.fail("controller", "law", std::string("refused by the controller's start-up check: ") + check.reason);
+  if (!check.ok) r.fail("controller", "law", "refused by the controller's start-up check: " + describe(check));
   r.finish();
   return r.ok();
 }

@@ -5,6 +5,10 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "firmware/control/config_check.hpp"
 
 #include "firmware/fault/fault_monitor.hpp"
 #include "firmware/scheduler/perf_counter.hpp"
@@ -23,6 +27,19 @@ inline nlohmann::json fault_json(const firmware::FaultCounters& f) {
           {"non_finite", f.non_finite},   {"out_of_range", f.out_of_range}, {"sensor_reported", f.sensor_reported},
           {"frames_lost", f.frames_lost}, {"held_ticks", f.held_ticks},   {"safe_ticks", f.safe_ticks},
           {"trips", f.trips}};
+}
+
+// A refused start-up check as one line: the reason, the offending value and the computed bounds.
+inline std::string describe(const firmware::ConfigCheck& c) {
+  std::ostringstream s;
+  s << c.reason;
+  if (c.value != 0.0 || c.lower != 0.0 || c.upper != 0.0) {
+    s << " (value " << c.value;
+    if (c.lower != 0.0) s << ", lower bound " << c.lower;
+    if (c.upper != 0.0) s << ", upper bound " << c.upper;
+    s << ")";
+  }
+  return s.str();
 }
 
 template <class Controller>
