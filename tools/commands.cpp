@@ -13,6 +13,8 @@ namespace {
 constexpr DeviceEntry kDevices[] = {
     {"ship_roll_damper", run_ship_roll_damper},
     {"power_stabilizer", run_power_stabilizer},
+    {"monorail", run_monorail},
+    {"servo_gyro", run_servo_gyro},
 };
 
 // The entry of the scene's [scene] device; nullptr (the problem added to the reader) if there is none.

@@ -18,5 +18,7 @@ struct DeviceEntry {
 
 int run_ship_roll_damper(SceneReader& reader, const RunRequest& request);
 int run_power_stabilizer(SceneReader& reader, const RunRequest& request);
+int run_monorail(SceneReader& reader, const RunRequest& request);
+int run_servo_gyro(SceneReader& reader, const RunRequest& request);
 
 }  // namespace gyrostab::tools

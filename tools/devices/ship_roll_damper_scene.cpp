@@ -88,7 +88,7 @@ class SeaMoment {
 // The ship model with the sea moment evaluated at every integrator stage (no zero-order hold on E(t)) and
 // the precession brake acting as a viscous torque.
 struct ShipInSea {
-  static constexpr int kStateSize = 4;
+  [[maybe_unused]] static constexpr int kStateSize = 4;
   using State = models::ShipRollDamper::State;
   mutable models::ShipRollDamper ship;
   const SeaMoment* sea;
