@@ -60,13 +60,20 @@ class RotorStrang {
   }
 
   // One Strang step on (m, q); used by the Yoshida composition without converting back to w.
+  // First same as last: a step's closing kick and the next step's opening kick see the same attitude, so the
+  // torque is computed once (keyed on the attitude, for models whose torque depends on it alone).
   template <class Q>
   void substep(double t, double h, Vec3& m, Q&& q) const {
-    if constexpr (Model::kHasTorque) m += (0.5 * h) * model_.body_torque(t, q);
+    if constexpr (Model::kHasTorque) m += (0.5 * h) * torque(t, q);
     remainder(0.5 * h, m, q);
     symmetric(h, m, q);
     remainder(0.5 * h, m, q);
-    if constexpr (Model::kHasTorque) m += (0.5 * h) * model_.body_torque(t + h, q);
+    if constexpr (Model::kHasTorque) {
+      cached_torque_ = model_.body_torque(t + h, q);
+      cached_q_ = q;
+      cache_valid_ = true;
+      m += (0.5 * h) * cached_torque_;
+    }
   }
 
  private:
@@ -93,16 +100,30 @@ class RotorStrang {
   // -phi about it.
   template <class Q>
   static void turn(double phi, int axis, const Vec3& e, Vec3& m, Q&& q) {
-    rotate_about_body_axis(q, e, phi);
-    const double c = std::cos(phi), s = std::sin(phi);
+    // One sincos of the half angle serves the quaternion and, by the double-angle formulas, m.
+    const double sh = std::sin(0.5 * phi), ch = std::cos(0.5 * phi);
+    Eigen::Map<Quat> qq(q.data());
+    qq = qq * Quat(ch, sh * e.x(), sh * e.y(), sh * e.z());
+    const double c = 1.0 - 2.0 * sh * sh, s = 2.0 * sh * ch;
     const int i = (axis + 1) % 3, j = (axis + 2) % 3;
     const double mi = m[i], mj = m[j];
     m[i] = c * mi + s * mj;
     m[j] = -s * mi + c * mj;
   }
 
+  template <class Q>
+  Vec3 torque(double t, const Q& q) const {
+    if constexpr (requires { Model::kTorqueDependsOnAttitudeOnly; }) {
+      if (Model::kTorqueDependsOnAttitudeOnly && cache_valid_ && cached_q_ == q) return cached_torque_;
+    }
+    return model_.body_torque(t, q);
+  }
+
   const Model& model_;
   Vec3 inv_I_;
+  mutable Vec3 cached_torque_{Vec3::Zero()};
+  mutable Eigen::Vector4d cached_q_{Eigen::Vector4d::Zero()};
+  mutable bool cache_valid_{false};
   int b_{0}, s_{2}, r_{1};
   Vec3 e_s_{Vec3::UnitZ()}, e_r_{Vec3::UnitY()};
 };

@@ -26,6 +26,7 @@ class HeavySymmetricTop {
   using State = RigidBodyState;
   static constexpr const char* kName = "heavy-symmetric-top";
   static constexpr bool kHasTorque = true;
+  static constexpr bool kTorqueDependsOnAttitudeOnly = true;  // gravity: lets the splitting reuse a kick
 
   explicit HeavySymmetricTop(const HeavySymmetricTopParams& p = {})
       : p_(p), inertia_(p.A, p.A, p.C), inv_inertia_(inertia_.cwiseInverse()) {}
