@@ -62,6 +62,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace gyrostab::models {
@@ -126,7 +127,12 @@ class ShipRollDamper {
 
   void derivative(double /*t*/, const State& x, State& dx) const {
     const double sp = std::sin(x[0]), cp = std::cos(x[0]);
-    const double sb = std::sin(x[1]), cb = std::cos(x[1]);
+    if (p_.locked && !(x[1] == locked_beta_)) {  // locked: β stays at β0, its sin and cos are computed once
+      locked_beta_ = x[1];
+      locked_sb_ = std::sin(x[1]);
+      locked_cb_ = std::cos(x[1]);
+    }
+    const double sb = p_.locked ? locked_sb_ : std::sin(x[1]), cb = p_.locked ? locked_cb_ : std::cos(x[1]);
     const double u = x[2], v = x[3];
     const double inertia = p_.A - p_.Q * sb * sb;
     double roll = inputs.E - p_.d1 * u - righting_moment(sp, cp) + p_.q * sp * (1.0 - cb);
@@ -184,6 +190,9 @@ class ShipRollDamper {
 
   ShipRollDamperParams p_;
   double k_stop_, d_stop_;
+  // Locked: sin and cos of the last β seen (the same values as computing them each time; a cache, hence
+  // mutable: one model per integrator, as for `inputs`).
+  mutable double locked_beta_{std::numeric_limits<double>::quiet_NaN()}, locked_sb_{0.0}, locked_cb_{1.0};
 };
 
 }  // namespace gyrostab::models

@@ -41,6 +41,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <numbers>
 
@@ -206,27 +207,34 @@ class IrregularSea {
     return {(v[0] + v[1]) + (v[2] + v[3]), (d[0] + d[1]) + (d[2] + d[3])};
   }
 
-  // z ← z ρ for every component, summing y and ẏ in the same pass.
+  // z ← z ρ for every component, summing y and ẏ in the same pass. Written with two-double vectors (GCC/clang
+  // vector extension, SSE2 on x86-64): lanes 0-1 and 2-3 of each group of 4, lane l only ever added to lane
+  // l, so the result is bit-identical to the scalar loop over i with sums v[i mod 4] (no FMA: baseline x86-64
+  // has none). GCC -O2 kept that scalar loop's lane sums in memory and did not vectorize it: this is ~2x
+  // fewer instructions, +20 % ticks/s on the ship scene (tools/bench/scene_bench.cpp).
   WaveSample step() const {
-    double* __restrict re = re_.data();
-    double* __restrict im = im_.data();
-    const double* __restrict cr = rot_re_.data();
-    const double* __restrict ci = rot_im_.data();
-    const double* __restrict b = amplitude_.data();
-    const double* __restrict c = rate_coeff_.data();
-    double v[4] = {0, 0, 0, 0}, d[4] = {0, 0, 0, 0};
-    for (int g = 0; g < groups_; ++g) {
-      for (int l = 0; l < 4; ++l) {
-        const int i = 4 * g + l;
-        const double r = re[i] * cr[i] - im[i] * ci[i];
-        const double m = re[i] * ci[i] + im[i] * cr[i];
-        re[i] = r;
-        im[i] = m;
-        v[l] += b[i] * r;
-        d[l] += c[i] * m;
-      }
+    using V2 = double __attribute__((vector_size(16)));
+    const auto load = [](const double* p) {
+      V2 x;
+      std::memcpy(&x, p, sizeof x);
+      return x;
+    };
+    V2 v01{}, v23{}, d01{}, d23{};
+    const auto pair = [&](int i, V2& v, V2& d) {
+      const V2 re = load(re_.data() + i), im = load(im_.data() + i);
+      const V2 cr = load(rot_re_.data() + i), ci = load(rot_im_.data() + i);
+      const V2 r = re * cr - im * ci;
+      const V2 m = re * ci + im * cr;
+      std::memcpy(re_.data() + i, &r, sizeof r);
+      std::memcpy(im_.data() + i, &m, sizeof m);
+      v += load(amplitude_.data() + i) * r;
+      d += load(rate_coeff_.data() + i) * m;
+    };
+    for (int i = 0; i < 4 * groups_; i += 4) {
+      pair(i, v01, d01);
+      pair(i + 2, v23, d23);
     }
-    return {(v[0] + v[1]) + (v[2] + v[3]), (d[0] + d[1]) + (d[2] + d[3])};
+    return {(v01[0] + v01[1]) + (v23[0] + v23[1]), (d01[0] + d01[1]) + (d23[0] + d23[1])};
   }
 
   using Array = std::array<double, kCapacity>;

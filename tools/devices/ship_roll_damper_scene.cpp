@@ -3,8 +3,10 @@
 // (firmware/app/ship_roll_damper_controller.hpp: passive brake or active precession control) and, in the
 // same sea, the same ship with the gyro locked — the unstabilized reference for `roll_reduction`.
 // Keys: docs/scenes.md#ship_roll_damper.
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <variant>
@@ -76,13 +78,29 @@ class SeaMoment {
                                    motion::WaveRollMomentTransfer{roll_stiffness, c.kappa});
     }
   }
-  double operator()(double t) const { return regular_ ? wave_(t) : (*sea_)(t); }
+  // Both ships (stabilized and reference) evaluate E at the same RK4 stage times t, t + h/2 (twice), t + h,
+  // so the last few values are kept: E is a pure function of t (irregular_sea.hpp), a hit is the same bits.
+  double operator()(double t) const {
+    for (const Memo& m : memo_) {
+      if (m.t == t) return m.value;
+    }
+    const double value = regular_ ? wave_(t) : (*sea_)(t);
+    memo_[next_memo_] = {t, value};
+    next_memo_ = (next_memo_ + 1) % memo_.size();
+    return value;
+  }
   double rms() const { return regular_ ? wave_.E0 / std::sqrt(2.0) : std::sqrt(sea_->output_variance()); }
 
  private:
+  struct Memo {
+    double t{std::numeric_limits<double>::quiet_NaN()};  // NaN: never equal, an empty slot
+    double value{0.0};
+  };
   bool regular_;
   motion::RegularWaveMoment wave_;
   std::unique_ptr<Sea> sea_;
+  mutable std::array<Memo, 4> memo_{};
+  mutable std::size_t next_memo_{0};
 };
 
 // The ship model with the sea moment evaluated at every integrator stage (no zero-order hold on E(t)) and
