@@ -52,8 +52,9 @@ int run_scene(const RunRequest& req) {
   if (rc == 0 && !req.check_only && req.write_outputs) {
     std::printf("%s: wrote %s/report.json, signals.csv\n", req.scene_path.c_str(), req.out_dir.c_str());
   }
-  if (rc == 2) std::fprintf(stderr, "%s: refused (%zu problem%s)\n", req.scene_path.c_str(),
-                            reader.errors().size(), reader.errors().size() == 1 ? "" : "s");
+  if (rc == 2)
+    std::fprintf(stderr, "%s: refused (%zu problem%s)\n", req.scene_path.c_str(), reader.errors().size(),
+                 reader.errors().size() == 1 ? "" : "s");
   return rc;
 }
 

@@ -16,6 +16,7 @@ int run_scene(const RunRequest& request);
 // text (`name` stands for the file in messages), find the [scene] device and run its scene validation
 // (parameters and the controller's start-up checks) without building or running anything. Returns 0 (valid)
 // or 2 (refused); the problems go to `problems` if given, else to stderr. Never throws on bad input.
-int check_scene_text(std::string_view text, const std::string& name, std::vector<std::string>* problems = nullptr);
+int check_scene_text(std::string_view text, const std::string& name,
+                     std::vector<std::string>* problems = nullptr);
 
 }  // namespace gyrostab::tools

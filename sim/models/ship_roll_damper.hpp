@@ -127,12 +127,19 @@ class ShipRollDamper {
 
   void derivative(double /*t*/, const State& x, State& dx) const {
     const double sp = std::sin(x[0]), cp = std::cos(x[0]);
-    if (p_.locked && !(x[1] == locked_beta_)) {  // locked: β stays at β0, its sin and cos are computed once
-      locked_beta_ = x[1];
-      locked_sb_ = std::sin(x[1]);
-      locked_cb_ = std::cos(x[1]);
+    double sb = 0.0, cb = 1.0;
+    if (!p_.locked) {
+      sb = std::sin(x[1]);
+      cb = std::cos(x[1]);
+    } else {  // locked: β stays at β0, so its sin and cos are computed once
+      if (!(x[1] == locked_beta_)) {
+        locked_beta_ = x[1];
+        locked_sb_ = std::sin(x[1]);
+        locked_cb_ = std::cos(x[1]);
+      }
+      sb = locked_sb_;
+      cb = locked_cb_;
     }
-    const double sb = p_.locked ? locked_sb_ : std::sin(x[1]), cb = p_.locked ? locked_cb_ : std::cos(x[1]);
     const double u = x[2], v = x[3];
     const double inertia = p_.A - p_.Q * sb * sb;
     double roll = inputs.E - p_.d1 * u - righting_moment(sp, cp) + p_.q * sp * (1.0 - cb);

@@ -69,13 +69,13 @@ TEST(SceneReader, ChoiceListsTheAllowedValues) {
 // tests/fuzz/scene_fuzz.cpp. Each must be a plain parse error (or, the multi-line string, valid), which the
 // sanitizer build (CI's build-asan) checks for undefined behaviour too.
 TEST(SceneReader, InputsThatBrokeTheParserAreParseErrorsNotUndefinedBehaviour) {
-  for (const char* text : {"q\xc2\xb7 = 1\n",               // U+00B7 after a key
-                           "\xc2\xa7\n",                    // U+00A7 at the start of a line
+  for (const char* text : {"q\xc2\xb7 = 1\n",                 // U+00B7 after a key
+                           "\xc2\xa7\n",                      // U+00A7 at the start of a line
                            "s = \"\"\"\\\n\xc2\xa7\"\"\"\n",  // after a line-ending backslash (valid TOML)
-                           "a = 1 \xe3\x80\x81\n",         // U+3001
-                           "a = 1 \xef\xbb\xbe\n",         // U+FEFE
-                           "\xcc\xaa",                       // U+032A alone
-                           "d = 1979-05-27Tx\n"}) {         // a date-time's 'T' without a time
+                           "a = 1 \xe3\x80\x81\n",            // U+3001
+                           "a = 1 \xef\xbb\xbe\n",            // U+FEFE
+                           "\xcc\xaa",                        // U+032A alone
+                           "d = 1979-05-27Tx\n"}) {           // a date-time's 'T' without a time
     SceneReader r;
     const bool ok = r.parse(text, "u.toml");
     EXPECT_EQ(ok, r.errors().empty()) << text;
@@ -93,11 +93,12 @@ TEST(SceneCheck, CheckSceneTextCollectsProblemsWithoutPrinting) {
   EXPECT_EQ(tools::check_scene_text("[scene\n", "t.toml", &problems), 2);
   EXPECT_TRUE(contains(problems, "t.toml:1:"));
   problems.clear();
-  EXPECT_EQ(tools::check_scene_text("[scene]\ndevice = \"ship_roll_damper\"\n[ship]\nA = 3.2e7\nc = 1.1772e7\n"
-                                    "[gyro]\nB = 1.5e4\nq = 1350\nH = 1.018e6\n[sea]\nkind = \"regular\"\n"
-                                    "E0 = 1e5\nomega = 0.6\n",
-                                    "t.toml", &problems),
-            0);
+  EXPECT_EQ(
+      tools::check_scene_text("[scene]\ndevice = \"ship_roll_damper\"\n[ship]\nA = 3.2e7\nc = 1.1772e7\n"
+                              "[gyro]\nB = 1.5e4\nq = 1350\nH = 1.018e6\n[sea]\nkind = \"regular\"\n"
+                              "E0 = 1e5\nomega = 0.6\n",
+                              "t.toml", &problems),
+      0);
   EXPECT_TRUE(problems.empty()) << problems.front();
 }
 

@@ -11,11 +11,13 @@
 //   build/bin/gyrostab-bench --benchmark_filter='^scene/' --benchmark_repetitions=5
 //                            --benchmark_report_aggregates_only=true
 //
-// ship/<piece>: one tick's share of each piece of the ship scene's loop (tools/devices/ship_roll_damper_scene.cpp
-// builds the same objects with the shipped scene's parameters): the irregular sea (96 of 256 components), the
-// plant's RK4 step (stabilized ship and the locked reference ship, each 4 stages, sea evaluated at every
-// stage), the sensors, the firmware controller (with the CLOCK_MONOTONIC counters the run uses and without).
+// ship/<piece>: one tick's share of each piece of the ship scene's loop
+// (tools/devices/ship_roll_damper_scene.cpp builds the same objects with the shipped scene's parameters): the
+// irregular sea (96 of 256 components), the plant's RK4 step (stabilized ship and the locked reference ship,
+// each 4 stages, sea evaluated at every stage), the sensors, the firmware controller (with the
+// CLOCK_MONOTONIC counters the run uses and without).
 #include <benchmark/benchmark.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -25,8 +27,6 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <time.h>
 
 #include "firmware/app/ship_roll_damper_controller.hpp"
 #include "firmware/platform/posix/monotonic_clock.hpp"
@@ -47,7 +47,8 @@ namespace {
 using namespace gyrostab;
 using Clock = std::chrono::steady_clock;
 
-// ---- whole scenes ------------------------------------------------------------------------------------------
+// ---- whole scenes
+// ------------------------------------------------------------------------------------------
 
 constexpr std::int64_t kDefaultTicks = 200'000;
 
@@ -132,7 +133,8 @@ const bool scenes_registered = [] {
   return true;
 }();
 
-// ---- ship roll damper: the pieces of one tick --------------------------------------------------------------
+// ---- ship roll damper: the pieces of one tick
+// --------------------------------------------------------------
 
 // The shipped ship scene's numbers (sim/scenes/ship-roll-damper-active.toml).
 constexpr double kTick = 1e-3;
@@ -146,7 +148,8 @@ motion::IrregularSea<256> make_ship_sea() {
   p.components = 96;
   p.grid_period = kTick;
   random::SeededRng rng(20261122, 1);
-  return motion::IrregularSea<256>(motion::WaveSpectrum(sp), p, rng, motion::WaveRollMomentTransfer{1.1772e7, 0.7});
+  return motion::IrregularSea<256>(motion::WaveSpectrum(sp), p, rng,
+                                   motion::WaveRollMomentTransfer{1.1772e7, 0.7});
 }
 
 models::ShipRollDamperParams ship_params(bool locked) {
@@ -181,7 +184,8 @@ void BM_ShipSeaPerTick(benchmark::State& state) {
     const double t = static_cast<double>(k) * kTick;
     ++k;
     double e = 0.0;
-    for (int plant = 0; plant < 2; ++plant) e += sea(t) + sea(t + 0.5 * kTick) + sea(t + 0.5 * kTick) + sea(t + kTick);
+    for (int plant = 0; plant < 2; ++plant)
+      e += sea(t) + sea(t + 0.5 * kTick) + sea(t + 0.5 * kTick) + sea(t + kTick);
     benchmark::DoNotOptimize(e);
   }
   state.SetItemsProcessed(state.iterations());
@@ -231,8 +235,8 @@ void BM_ShipSensors(benchmark::State& state) {
   sensors::SensorNoise angle({1e-4 * std::sqrt(kTick), 0.0, 0.0}, kTick), rate({1e-4, 0.0, 0.0}, kTick),
       prec({1e-4, 0.0, 0.0}, kTick);
   random::SeededRng r1(1, 2), r2(1, 3), r3(1, 4);
-  const sensors::Encoder enc({65536, 0.0, sensors::EncoderParams::Mode::kIncremental,
-                              sensors::EncoderParams::Rounding::kNearest});
+  const sensors::Encoder enc(
+      {65536, 0.0, sensors::EncoderParams::Mode::kIncremental, sensors::EncoderParams::Rounding::kNearest});
   double beta = 0.1;
   for (auto _ : state) {
     const std::int64_t c = enc.counts(beta);

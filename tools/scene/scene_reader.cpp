@@ -5,8 +5,8 @@
 #include <set>
 #include <sstream>
 
-// toml++ is compiled here, header-only (tools/CMakeLists.txt: this is the one file that includes it), with two
-// fixes, both found by tests/fuzz/scene_fuzz.cpp.
+// toml++ is compiled here, header-only (tools/CMakeLists.txt: this is the one file that includes it), with
+// two fixes, both found by tests/fuzz/scene_fuzz.cpp.
 // 1. toml++ 3.3.0 (Debian 12) is_non_ascii_horizontal_whitespace() reaches __builtin_unreachable() —
 // undefined behaviour — for the non-whitespace code points U+00A1..U+0499, U+2C5E..U+3057 and
 // U+FB26..U+FEFE wherever the parser asks "is this whitespace?": after a key (`q· = 1`), at the start of a
