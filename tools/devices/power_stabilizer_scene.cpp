@@ -39,6 +39,7 @@
 #include "tools/devices/running_stats.hpp"
 #include "tools/devices/scene_device.hpp"
 #include "tools/run/closed_loop.hpp"
+#include "tools/run/run_device.hpp"
 #include "tools/run/controller_report.hpp"
 #include "tools/run/nutation_meter.hpp"
 
@@ -612,23 +613,7 @@ template <class Motor, class Structure, bool kDcDrive, template <class> class In
 int run_with(const PowerScene& scene, const RunRequest& req) {
   using Device = PowerStabilizerDevice<Motor, Structure, kDcDrive, Integrator>;
   auto device = std::make_unique<Device>(scene);
-  Recorder rec(Device::columns(), scene.loop.ticks(), scene.loop.record_every);
-  const LoopOutcome outcome = run_requested(*device, scene.loop, rec, req);
-  nlohmann::json report{{"scene", scene_summary(scene.loop, req.scene_path)},
-                        {"figures", device->figures()},
-                        {"timing", timing_summary(scene.loop, outcome)}};
-  report["timing"]["controller"] = controller_report(device->controller());
-  std::string error;
-  if (!write_run_outputs(req, scene.loop, rec, report, error)) {
-    std::fprintf(stderr, "gyrostab: %s\n", error.c_str());
-    return 3;
-  }
-  if (outcome.diverged) {
-    std::fprintf(stderr, "gyrostab: %s: the plant state became non-finite at tick %lld; outputs up to it are written\n",
-                 scene.loop.name.c_str(), static_cast<long long>(outcome.diverged_tick));
-    return 3;
-  }
-  return 0;
+  return run_device(*device, scene.loop, req);
 }
 
 // Integrator, then drive: the elastic variant runs under Rk4 only (validated at read time).

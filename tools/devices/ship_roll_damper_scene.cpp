@@ -26,6 +26,7 @@
 #include "tools/devices/running_stats.hpp"
 #include "tools/devices/scene_device.hpp"
 #include "tools/run/closed_loop.hpp"
+#include "tools/run/run_device.hpp"
 #include "tools/run/controller_report.hpp"
 
 namespace gyrostab::tools {
@@ -252,7 +253,10 @@ bool read_scene(SceneReader& r, ShipScene& s) {
   p.stop_damping_ratio = r.number("gyro", "stop_damping_ratio", 1.0, Range::non_negative(), "end-stop damping [-]");
   s.brake_full_Nms = r.number("gyro", "brake_full_Nms", 1e7, Range::positive(),
                               "brake at precession_brake = 1 (safe state) [N m s/rad]");
-  if (const char* why = p.invalid_reason()) r.fail("ship", "A", why);
+  // Relations between keys only once each key is valid (a missing key reads as NaN and would trip them too).
+  if (r.ok()) {
+    if (const char* why = p.invalid_reason()) r.fail("ship", "A", why);
+  }
 
   const std::string kind = r.choice("sea", "kind", "jonswap", {"regular", "pierson_moskowitz", "jonswap"}, "wave model");
   s.sea.regular = kind == "regular";
@@ -325,23 +329,7 @@ int run_ship_roll_damper(SceneReader& reader, const RunRequest& req) {
   if (!read_scene(reader, *scene)) return 2;
   if (req.check_only) return 0;
   auto device = std::make_unique<ShipRollDamperDevice>(*scene);
-  Recorder rec(ShipRollDamperDevice::columns(), scene->loop.ticks(), scene->loop.record_every);
-  const LoopOutcome outcome = run_requested(*device, scene->loop, rec, req);
-  nlohmann::json report{{"scene", scene_summary(scene->loop, req.scene_path)},
-                        {"figures", device->figures()},
-                        {"timing", timing_summary(scene->loop, outcome)}};
-  report["timing"]["controller"] = controller_report(device->controller());
-  std::string error;
-  if (!write_run_outputs(req, scene->loop, rec, report, error)) {
-    std::fprintf(stderr, "gyrostab: %s\n", error.c_str());
-    return 3;
-  }
-  if (outcome.diverged) {
-    std::fprintf(stderr, "gyrostab: %s: the plant state became non-finite at tick %lld; outputs up to it are written\n",
-                 scene->loop.name.c_str(), static_cast<long long>(outcome.diverged_tick));
-    return 3;
-  }
-  return 0;
+  return run_device(*device, scene->loop, req);
 }
 
 }  // namespace gyrostab::tools
