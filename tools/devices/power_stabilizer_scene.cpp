@@ -153,11 +153,7 @@ class PowerStabilizerDevice {
   }
 
   void sense(std::int64_t tick, msg::SensorFrame& f) {
-    f = msg::SensorFrame{};
-    f.tick = static_cast<std::uint64_t>(tick);
-    f.time_ns = tick * s_.loop.tick_ns;
-    f.sample_time_ns = f.time_ns;
-    f.sequence = static_cast<std::uint32_t>(tick);
+    begin_sensor_frame(f, tick, s_.loop.tick_ns);
     if constexpr (kDcDrive) {
       // Motor-side encoders (the axis-1 motor turns the platform φ when elastic); currents from the drives.
       drive1_.write_sensors(f, msg::kAxis1, x_[kAngle1]);

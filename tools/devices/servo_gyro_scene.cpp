@@ -110,11 +110,7 @@ class ServoGyroDevice {
   }
 
   void sense(std::int64_t tick, msg::SensorFrame& f) {
-    f = msg::SensorFrame{};
-    f.tick = static_cast<std::uint64_t>(tick);
-    f.time_ns = tick * s_.loop.tick_ns;
-    f.sample_time_ns = f.time_ns;
-    f.sequence = static_cast<std::uint32_t>(tick);
+    begin_sensor_frame(f, tick, s_.loop.tick_ns);
     // Axis 2 turns without end: a single-turn absolute encoder, read as β in [−π, π).
     const std::int64_t drive_counts = drive_encoder_.counts(x_[1]);
     double beta = drive_encoder_.angle_of(drive_counts);

@@ -148,11 +148,7 @@ class ShipRollDamperDevice {
   }
 
   void sense(std::int64_t tick, msg::SensorFrame& f) {
-    f = msg::SensorFrame{};
-    f.tick = static_cast<std::uint64_t>(tick);
-    f.time_ns = tick * s_.loop.tick_ns;
-    f.sample_time_ns = f.time_ns;
-    f.sequence = static_cast<std::uint32_t>(tick);
+    begin_sensor_frame(f, tick, s_.loop.tick_ns);
     f.carrier_angle_rad[msg::kRoll] = x_[0] + roll_angle_noise_.sample(rng_angle_);
     f.carrier_rate_rad_s[msg::kRoll] = x_[2] + roll_rate_noise_.sample(rng_rate_);
     const std::int64_t counts = encoder_.counts(x_[1]);

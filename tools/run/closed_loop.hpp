@@ -20,6 +20,16 @@
 
 namespace gyrostab::tools {
 
+// A fresh SensorFrame for tick k: header from the integer tick (publish and sample time on the plant's clock,
+// sequence = tick), every signal zero until the device fills it.
+inline void begin_sensor_frame(msg::SensorFrame& f, std::int64_t tick, std::int64_t tick_ns) {
+  f = msg::SensorFrame{};
+  f.tick = static_cast<std::uint64_t>(tick);
+  f.time_ns = tick * tick_ns;
+  f.sample_time_ns = f.time_ns;
+  f.sequence = static_cast<std::uint32_t>(tick);
+}
+
 struct LoopOutcome {
   std::int64_t ticks_run{0};
   bool diverged{false};           // the plant state became non-finite
