@@ -8,14 +8,7 @@
 #include <chrono>
 #include <cstdio>
 
-namespace {
-std::atomic<int> g_eigen_malloc_violations{0};
-}
-#define EIGEN_RUNTIME_NO_MALLOC
-#define eigen_assert(x)                                                                  \
-  do {                                                                                   \
-    if (!(x)) g_eigen_malloc_violations.fetch_add(1, std::memory_order_relaxed);         \
-  } while (false)
+#include "tests/support/eigen_malloc_guard.hpp"  // first: before any Eigen header
 
 #include <gtest/gtest.h>
 
