@@ -7,6 +7,7 @@
 
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/recorder.hpp"
+#include "tools/run/run_role.hpp"
 #include "tools/scene/loop_config.hpp"
 
 namespace gyrostab::tools {
@@ -14,6 +15,8 @@ namespace gyrostab::tools {
 struct RunRequest {
   std::string scene_path;
   std::string out_dir{"out"};
+  Role role{Role::kInProcess};  // which part of the loop this process runs (run_role.hpp)
+  TransportOptions transport;
   bool check_only{false};  // validate the scene and stop
   bool progress{true};     // progress line on a terminal
   // For tests and studies:
