@@ -1,6 +1,8 @@
 #include "tools/commands.hpp"
 
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +17,10 @@ constexpr DeviceEntry kDevices[] = {
     {"power_stabilizer", run_power_stabilizer},
     {"monorail", run_monorail},
     {"servo_gyro", run_servo_gyro},
+    {"gyro_vertical", run_gyro_vertical},
+    {"gyrocompass", run_gyrocompass},
+    {"inertial_platform", run_inertial_platform},
+    {"gyro_pendulum", run_gyro_pendulum},
 };
 
 // The entry of the scene's [scene] device; nullptr (the problem added to the reader) if there is none.
@@ -36,8 +42,22 @@ void print_problems(const SceneReader& reader) {
 }  // namespace
 
 int run_scene(const RunRequest& req) {
+  // A logging run reads the file once, so that the bus log's scene event holds exactly the text that ran.
+  if (!req.transport.log_path.empty() && req.scene_text.empty()) {
+    RunRequest with_text = req;
+    std::ifstream f(req.scene_path, std::ios::binary);
+    std::ostringstream text;
+    text << f.rdbuf();
+    if (!f || text.str().empty()) {
+      std::fprintf(stderr, "%s: cannot read the scene file (or it is empty)\n", req.scene_path.c_str());
+      return 2;
+    }
+    with_text.scene_text = text.str();
+    return run_scene(with_text);
+  }
   SceneReader reader;
-  if (!reader.open(req.scene_path)) {
+  // scene_text set: the scene came from a bus log (gyrostab replay) or was read above; scene_path names it.
+  if (!(req.scene_text.empty() ? reader.open(req.scene_path) : reader.parse(req.scene_text, req.scene_path))) {
     print_problems(reader);
     return 2;
   }
@@ -49,7 +69,7 @@ int run_scene(const RunRequest& req) {
   const int rc = d->run(reader, req);
   print_problems(reader);
   if (rc == 0 && req.check_only) std::printf("%s: ok\n", req.scene_path.c_str());
-  if (rc == 0 && !req.check_only && req.write_outputs) {
+  if (rc == 0 && !req.check_only && req.write_outputs && req.role != Role::kController) {
     std::printf("%s: wrote %s/report.json, signals.csv\n", req.scene_path.c_str(), req.out_dir.c_str());
   }
   if (rc == 2)

@@ -10,6 +10,7 @@
 namespace gyrostab::tools {
 
 // Exit code: 0 ok, 2 scene refused (every problem printed), 3 run failed.
+// The scene is request.scene_text if set (named request.scene_path in messages), else the file scene_path.
 int run_scene(const RunRequest& request);
 
 // `gyrostab check` on a scene held in memory (tests, the fuzz target tests/fuzz/scene_fuzz.cpp): parse the

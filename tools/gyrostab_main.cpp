@@ -1,8 +1,16 @@
-// gyrostab — command-line entry point: demo, run, check.
+// gyrostab — command-line entry point: demo, run, check, replay, accuracy.
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
+#include <string>
+
+#include "tools/accuracy/accuracy_command.hpp"
 #include "tools/commands.hpp"
 #include "tools/demo_gimbal_gyro.hpp"
+#include "tools/replay_command.hpp"
+#include "tools/run/link_cli.hpp"
+#include "tools/run/process_pair.hpp"
+#include "hil/can/dbc_writer.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"gyrostab: gyroscopic stabilizers and gimbal drives"};
@@ -26,14 +34,106 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scene", run.scene_path, "scene file (TOML)")->required();
   run_cmd->add_option("--out", run.out_dir, "output directory (report.json, signals.csv, signals.png)");
   run_cmd->add_flag("!--no-progress", run.progress, "no progress line on the terminal");
+  run_cmd->add_option("--log", run.transport.log_path,
+                      "record the bus as an LCM event log (docs/logs.md); SIGINT/SIGTERM stop at a tick boundary");
+  gyrostab::tools::add_link_options(run_cmd, run, gyrostab::tools::LinkSide::kRun);  // --transport lcm etc. (issue 4)
+
+  // Plant and controller as two processes over LCM (docs/transport.md).
+  gyrostab::tools::RunRequest plant;
+  plant.role = gyrostab::tools::Role::kPlant;
+  plant.progress = false;
+  CLI::App* plant_cmd = app.add_subcommand(
+      "plant", "run the plant of a scene as its own process, exchanging frames with `gyrostab controller` over LCM");
+  plant_cmd->add_option("scene", plant.scene_path, "scene file (TOML), the same as the controller's")->required();
+  plant_cmd->add_option("--out", plant.out_dir, "output directory (report.json, signals.csv, signals.png)");
+  plant_cmd->add_option("--log", plant.transport.log_path, "record the bus as an LCM event log (docs/logs.md)");
+  gyrostab::tools::add_link_options(plant_cmd, plant, gyrostab::tools::LinkSide::kPlant);
+  gyrostab::tools::RunRequest controller;
+  controller.role = gyrostab::tools::Role::kController;
+  controller.progress = false;
+  CLI::App* controller_cmd = app.add_subcommand(
+      "controller", "run the firmware controller of a scene as its own process, the other end of `gyrostab plant`");
+  controller_cmd->add_option("scene", controller.scene_path, "scene file (TOML), the same as the plant's")->required();
+  controller_cmd->add_option("--out", controller.out_dir, "output directory (report.json)");
+  gyrostab::tools::add_link_options(controller_cmd, controller, gyrostab::tools::LinkSide::kController);
 
   gyrostab::tools::RunRequest check;
   check.check_only = true;
   CLI::App* check_cmd = app.add_subcommand("check", "validate a scene without running it");
   check_cmd->add_option("scene", check.scene_path, "scene file (TOML)")->required();
 
+  gyrostab::tools::RunRequest replay;
+  replay.role = gyrostab::tools::Role::kReplay;
+  replay.write_outputs = false;
+  replay.progress = false;
+  bool resimulate = false;
+  CLI::App* replay_cmd = app.add_subcommand(
+      "replay", "replay a bus log into the controller alone and check every actuator frame bit for bit "
+                "(exit 0 identical, 4 mismatch, 5 truncated/corrupt log, 2 nothing replayed)");
+  replay_cmd->add_option("log", replay.transport.replay_log, "bus log (gyrostab run --log)")->required();
+  replay_cmd->add_option("--scene", replay.scene_path, "use this scene instead of the one recorded in the log");
+  replay_cmd->add_flag("--real-time", replay.transport.replay_real_time, "feed frames at the scene's tick rate");
+  replay_cmd->add_flag("--resimulate", resimulate,
+                       "re-simulate the plant open loop from the recorded actuator frames and check every sensor "
+                       "frame (exit 3 if the plant diverges where the run did not)");
+  CLI::Option* replay_out =
+      replay_cmd->add_option("--out", replay.out_dir, "with --resimulate: write the re-simulated run's outputs here");
+
+  gyrostab::tools::AccuracyRequest accuracy;
+  CLI::App* accuracy_cmd = app.add_subcommand(
+      "accuracy", "error against run time: the scene's plant by our integrators and by Boost.Odeint and SUNDIALS "
+                  "CVODE, work-precision table, accuracy.csv, report.json, work_precision.png (docs/accuracy.md)");
+  accuracy_cmd->add_option("scene", accuracy.scene_path, "scene file (TOML)")->required();
+  accuracy_cmd->add_option("--out", accuracy.out_dir, "output directory");
+  accuracy_cmd->add_option("--duration", accuracy.duration_s, "window from t = 0 [s] (default: docs/accuracy.md)")
+      ->check(CLI::PositiveNumber);
+  accuracy_cmd->add_option("--repeats", accuracy.repeats, "timings per run")->check(CLI::Range(1, 100));
+  accuracy_cmd->add_flag("--quick", accuracy.quick, "a small grid and one repeat (tests)");
+  accuracy_cmd->add_flag("!--no-plot", accuracy.plot, "no work_precision.png");
+  accuracy_cmd->add_flag("!--no-progress", accuracy.progress, "no progress line");
+
+  // The DBC file of the CAN bus (issue 7, docs/can.md): written from the frame map (hil/can/frame_map.hpp).
+  std::string dbc_out;
+  CLI::App* dbc_cmd = app.add_subcommand(
+      "dbc", "write the DBC file of the CAN FD bus (frame map: ids, lengths, signals, scaling, units, ranges)");
+  dbc_cmd->add_option("--out", dbc_out, "file to write (default: standard output)");
+
   CLI11_PARSE(app, argc, argv);
+  if (dbc_cmd->parsed()) {
+    const std::string text = gyrostab::can::dbc_text();
+    std::FILE* f = dbc_out.empty() ? stdout : std::fopen(dbc_out.c_str(), "w");
+    if (f == nullptr || std::fwrite(text.data(), 1, text.size(), f) != text.size() ||
+        (f != stdout && std::fclose(f) != 0)) {
+      std::fprintf(stderr, "gyrostab dbc: cannot write %s\n", dbc_out.c_str());
+      return 3;
+    }
+    return 0;
+  }
+  if (accuracy_cmd->parsed()) return gyrostab::tools::run_accuracy(accuracy);
+  if (replay_cmd->parsed()) {
+    if (resimulate) replay.role = gyrostab::tools::Role::kResimulate;
+    replay.write_outputs = resimulate && replay_out->count() > 0;
+    return gyrostab::tools::replay_log(replay);
+  }
   if (demo_cmd->parsed()) return gyrostab::tools::run_demo(demo);
+  if (run_cmd->parsed() && run.transport.transport == "lcm" && !run.transport.can_if.empty()) {
+    std::fprintf(stderr, "gyrostab run: --can-if needs --transport can\n");
+    return 2;
+  }
+  if (run_cmd->parsed() && run.transport.transport == "can" && run.transport.can_if.empty()) {
+    run.transport.can_if = "vcan0";  // issue 7: CAN FD over SocketCAN, docs/can.md
+  }
+  if (run_cmd->parsed() && (run.transport.transport == "lcm" || run.transport.transport == "can")) {
+    return gyrostab::tools::run_process_pair(run);
+  }
+  if (run_cmd->parsed()) {
+    if (const std::string bad = gyrostab::tools::check_inproc_options(run); !bad.empty()) {
+      std::fprintf(stderr, "gyrostab run: %s\n", bad.c_str());
+      return 2;
+    }
+  }
+  if (plant_cmd->parsed()) return gyrostab::tools::run_scene(plant);
+  if (controller_cmd->parsed()) return gyrostab::tools::run_scene(controller);
   if (run_cmd->parsed()) return gyrostab::tools::run_scene(run);
   if (check_cmd->parsed()) return gyrostab::tools::run_scene(check);
   return 0;

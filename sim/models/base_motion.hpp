@@ -34,6 +34,9 @@ struct HarmonicBaseRotation {
   dynamics::Vec3 up_W{dynamics::Vec3::UnitZ()};    // "up" in base axes when φ = 0
 
   BaseSample operator()(double t) const {
+    // No roll: the base is at rest; the sin/cos and the rotation are skipped (a scene without base motion
+    // does not pay for it per derivative evaluation), the sample equals the one computed with Φ = 0.
+    if (amplitude == 0.0) return {dynamics::Vec3::Zero(), dynamics::Vec3::Zero(), up_W};
     const double s = std::sin(frequency * t), c = std::cos(frequency * t);
     const double phi = amplitude * s;
     BaseSample b;

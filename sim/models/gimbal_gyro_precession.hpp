@@ -32,6 +32,9 @@ class GimbalGyroPrecession {
 
   GimbalTorques torques{};
 
+  const GimbalGyroParams& params() const { return p_; }
+  const Base& base() const { return base_; }
+
   static State make_state(double alpha, double beta, double H) { return State(alpha, beta, H); }
 
   void derivative(double t, const State& x, State& dx) const {

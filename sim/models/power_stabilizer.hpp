@@ -39,6 +39,13 @@
 //   κ²I Ω1' instead of κ I Ω1' — exact on a fixed base); elastic option: massless shaft, linear stiffness,
 //   the platform rotates about axis 1 only (its equation on a moving base keeps A^P Ω1' and drops products
 //   of base rates).
+//   Fidelity = FullGimbal (default): the gyro is GimbalGyro, nutation resolved.
+//   Fidelity = PrecessionOnly: the gyro is the precession ("engineering") model P0, GimbalGyroPrecession
+//     ((10.19)-(10.22), digest gyro-fundamentals.md §8): the inertia of the gimbals is dropped, the state is
+//     [α, β, H] and the gimbal rates are outputs (rates()); rigid structure only (the elastic shaft's mode is
+//     an inertia effect). Relative error O(ε), ε = ω_P/ω_N; torque-step transients |α| ≤ 2MB/H²,
+//     |β − Mt/H| ≤ M/(Hω_N) (digest §8); singular at gimbal lock (cos β = 0) without damping.
+// State (precession): x = [α (rad), β (rad), H (N m s)].
 // Integrators: the rigid variants provide gyroscopic_pair() and run under GyroscopicExponential (the default;
 //   the back-EMF damping is in the exact flow). The elastic variant does NOT provide it, on purpose: the
 //   exponential integrator would advance φ, φ' with its explicit-midpoint "remaining states" step, which is
@@ -55,10 +62,12 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <type_traits>
 
 #include "sim/dynamics/damped_gyroscopic_flow.hpp"
 #include "sim/models/base_motion.hpp"
 #include "sim/models/gimbal_gyro.hpp"
+#include "sim/models/gimbal_gyro_precession.hpp"
 
 namespace gyrostab::models {
 
@@ -86,6 +95,14 @@ struct ElasticPlatform {
   double AP{200.0};                       // platform inertia about axis 1, without the motor [kg m²]
 };
 
+// Fidelity options (the gyro's model).
+struct FullGimbal {
+  static constexpr bool kPrecession = false;  // GimbalGyro (10.4): nutation and precession
+};
+struct PrecessionOnly {
+  static constexpr bool kPrecession = true;  // GimbalGyroPrecession (10.19)-(10.22): precession only (P0)
+};
+
 struct PowerStabilizerInputs {
   double M1S{0.0};  // disturbance torque on axis 1 (the platform) [N m]
   double M2S{0.0};  // disturbance torque on axis 2 [N m]
@@ -104,14 +121,17 @@ struct PowerStabilizerSignals {
   double H{0.0};              // spin momentum [N m s]
 };
 
-template <class Base = FixedBase, class Drive = TorqueMotors, class Structure = RigidStructure>
+template <class Base = FixedBase, class Drive = TorqueMotors, class Structure = RigidStructure,
+          class Fidelity = FullGimbal>
 class PowerStabilizer {
  public:
   static constexpr bool kElastic = Structure::kExtraStates > 0;
   static constexpr bool kVoltageDriven = Drive::kVoltageDriven;
-  static constexpr int kStateSize = 5 + Structure::kExtraStates;
+  static constexpr bool kPrecession = Fidelity::kPrecession;
+  static_assert(!(kPrecession && kElastic), "the precession model P0 has no gimbal inertia: rigid structure only");
+  static constexpr int kStateSize = (kPrecession ? 3 : 5) + Structure::kExtraStates;
   using State = Eigen::Matrix<double, kStateSize, 1>;
-  using Gyro = GimbalGyro<Base>;
+  using Gyro = std::conditional_t<kPrecession, GimbalGyroPrecession<Base>, GimbalGyro<Base>>;
   static constexpr const char* kName = "power-stabilizer";
 
   explicit PowerStabilizer(const GimbalGyroParams& gyro = {}, const Drive& drive = {},
@@ -142,8 +162,11 @@ class PowerStabilizer {
   }
 
   static State make_state(double alpha, double beta, double alpha_rate, double beta_rate,
-                          double H) requires(!kElastic) {
+                          double H) requires(!kElastic && !kPrecession) {
     return Gyro::make_state(alpha, beta, alpha_rate, beta_rate, H);
+  }
+  static State make_state(double alpha, double beta, double H) requires kPrecession {
+    return Gyro::make_state(alpha, beta, H);
   }
   static State make_state(double alpha, double beta, double alpha_rate, double beta_rate, double H,
                           double phi, double phi_rate) requires kElastic {
@@ -175,23 +198,38 @@ class PowerStabilizer {
   void project(State& /*x*/) const {}
 
   // The fast linear part for dynamics::GyroscopicExponential (rigid variants only; see the header).
-  dynamics::GyroscopicPair gyroscopic_pair(const State& x) const requires(!kElastic) {
+  dynamics::GyroscopicPair gyroscopic_pair(const State& x) const requires(!kElastic && !kPrecession) {
     return gyro_.gyroscopic_pair(x);
   }
 
-  PowerStabilizerSignals signals(const State& x) const {
+  // Gimbal rates (α', β') relative to the base [rad/s]: states of the full model; of the precession model the
+  // solution of (10.19)-(10.22) at (t, x) with the held inputs.
+  void rates(double t, const State& x, double& alpha_rate, double& beta_rate) const {
+    if constexpr (kPrecession) {
+      State dx;
+      derivative(t, x, dx);
+      alpha_rate = dx[0];
+      beta_rate = dx[1];
+    } else {
+      (void)t;
+      alpha_rate = x[2];
+      beta_rate = x[3];
+    }
+  }
+
+  // `t` matters for the precession model only (its rates depend on the base motion at t).
+  PowerStabilizerSignals signals(const State& x, double t = 0.0) const {
     PowerStabilizerSignals s;
     s.alpha = x[0];
     s.beta = x[1];
-    s.alpha_rate = x[2];
-    s.beta_rate = x[3];
-    s.H = x[4];
+    rates(t, x, s.alpha_rate, s.beta_rate);
+    s.H = x[kPrecession ? 2 : 4];
     if constexpr (kElastic) {
       s.platform_angle = x[5];
       s.platform_rate = x[6];
     } else {
       s.platform_angle = x[0];
-      s.platform_rate = x[2];
+      s.platform_rate = s.alpha_rate;
     }
     s.motor_torque1 = driven_torque1() - back_emf_viscous() * s.platform_rate;
     return s;
@@ -199,7 +237,7 @@ class PowerStabilizer {
 
   // Mechanical energy on a base at rest [J]: the gimbals' (GimbalGyro::energy, with κ²I in A^A when rigid),
   // plus ½ A^P φ'² + ½ c (φ − α)² when elastic. Conserved without friction, back-EMF and inputs.
-  double energy(const State& x) const {
+  double energy(const State& x) const requires(!kPrecession) {
     if constexpr (!kElastic) {
       return gyro_.energy(x);
     } else {

@@ -17,10 +17,14 @@
 
 namespace {
 std::atomic<std::uint64_t> g_allocations{0};
+// Per thread as well (threads of a two-process-mode test: the loop threads against LCM's receive thread).
+// Static TLS of the executable: reading it never allocates.
+thread_local std::uint64_t t_allocations = 0;
 }
 
 namespace gyrostab::testing {
 std::uint64_t allocations_so_far() { return g_allocations.load(std::memory_order_relaxed); }
+std::uint64_t allocations_on_this_thread() { return t_allocations; }
 bool malloc_is_counted() { return GYROSTAB_COUNT_MALLOC != 0; }
 }  // namespace gyrostab::testing
 
@@ -31,14 +35,17 @@ void* __libc_calloc(std::size_t, std::size_t);
 void* __libc_realloc(void*, std::size_t);
 void* malloc(std::size_t n) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
+  ++t_allocations;
   return __libc_malloc(n);
 }
 void* calloc(std::size_t n, std::size_t s) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
+  ++t_allocations;
   return __libc_calloc(n, s);
 }
 void* realloc(void* p, std::size_t n) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
+  ++t_allocations;
   return __libc_realloc(p, n);
 }
 }
@@ -56,6 +63,7 @@ void* uncounted_malloc(std::size_t n) {
 
 void* counted_new(std::size_t n) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
+  ++t_allocations;
   if (n == 0) n = 1;
   void* p = uncounted_malloc(n);
   if (!p) throw std::bad_alloc();
@@ -63,6 +71,7 @@ void* counted_new(std::size_t n) {
 }
 void* counted_new_aligned(std::size_t n, std::align_val_t al) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
+  ++t_allocations;
   const std::size_t a = static_cast<std::size_t>(al);
   void* p = std::aligned_alloc(a, (n + a - 1) / a * a);
   if (!p) throw std::bad_alloc();

@@ -8,6 +8,7 @@
 namespace gyrostab::testing {
 
 std::uint64_t allocations_so_far();
+std::uint64_t allocations_on_this_thread();  // the same count, only the calling thread's allocations
 bool malloc_is_counted();  // false in sanitizer builds: only operator new is counted there
 
 class AllocationCounter {

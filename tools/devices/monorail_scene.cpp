@@ -32,6 +32,7 @@
 #include "sim/sensors/sensor_noise.hpp"
 #include "tools/devices/running_stats.hpp"
 #include "tools/devices/scene_device.hpp"
+#include "hil/link/actuator_frame_check.hpp"
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/run_device.hpp"
 #include "tools/run/controller_report.hpp"
@@ -262,6 +263,13 @@ class MonorailDevice {
   }
 
   bool finite() const { return x_.allFinite(); }
+  // The runtime guard's names for the plant state (tools/run/state_guard.hpp).
+  static constexpr int kGuardedStates = 4;
+  static const char* state_name(int i) {
+    constexpr const char* n[] = {"tilt_rad", "case_angle_rad", "tilt_rate_rad_s", "case_rate_rad_s"};
+    return n[i];
+  }
+  double state_value(int i) const { return x_[i]; }
 
   static std::vector<std::string> columns() {
     return {"tilt_rad",       "case_angle_rad",        "tilt_rate_rad_s", "case_rate_rad_s", "Omega3_rad_s",
@@ -282,6 +290,13 @@ class MonorailDevice {
   }
 
   msg::ActuatorFrame initial_command() const { return msg::ActuatorFrame{}; }
+  // What the plant accepts over a link (hil/link/actuator_frame_check.hpp): the law's torque limit on both
+  // axes; no voltage limit (torque-mode drive, the voltages are unused).
+  hil::ActuatorLimits actuator_limits() const {
+    hil::ActuatorLimits l;
+    l.torque_Nm[0] = l.torque_Nm[1] = s_.controller.law.torque_limit_Nm;
+    return l;
+  }
   Controller& controller() { return *controller_; }
 
   nlohmann::json figures() const {

@@ -20,5 +20,9 @@ int run_ship_roll_damper(SceneReader& reader, const RunRequest& request);
 int run_power_stabilizer(SceneReader& reader, const RunRequest& request);
 int run_monorail(SceneReader& reader, const RunRequest& request);
 int run_servo_gyro(SceneReader& reader, const RunRequest& request);
+int run_gyro_vertical(SceneReader& reader, const RunRequest& request);     // issue 6: Magnus 12.3
+int run_gyrocompass(SceneReader& reader, const RunRequest& request);       // issue 6: Magnus 13
+int run_inertial_platform(SceneReader& reader, const RunRequest& request);  // issue 6: Magnus 16
+int run_gyro_pendulum(SceneReader& reader, const RunRequest& request);     // issue 6: Magnus 12.3.3, Chelnokov
 
 }  // namespace gyrostab::tools

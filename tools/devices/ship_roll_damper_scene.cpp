@@ -23,7 +23,10 @@
 #include "sim/random/seeded_rng.hpp"
 #include "sim/sensors/encoder.hpp"
 #include "sim/sensors/sensor_noise.hpp"
+#include "tools/accuracy/half_step_window.hpp"
+#include "tools/accuracy/input_tap.hpp"
 #include "tools/devices/running_stats.hpp"
+#include "tools/devices/ship_roll_damper_study.hpp"
 #include "tools/devices/scene_device.hpp"
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/run_device.hpp"
@@ -124,6 +127,16 @@ struct ShipInSea {
 
 class ShipRollDamperDevice {
  public:
+  // The runtime guard's names (tools/run/state_guard.hpp): the stabilized ship, then the locked reference.
+  static constexpr int kGuardedStates = 8;
+  static const char* state_name(int i) {
+    constexpr const char* n[] = {"roll_rad",           "precession_rad",           "roll_rate_rad_s",
+                                 "precession_rate_rad_s", "reference_roll_rad",     "reference_precession_rad",
+                                 "reference_roll_rate_rad_s", "reference_precession_rate_rad_s"};
+    return n[i];
+  }
+  double state_value(int i) const { return i < 4 ? x_[i] : x_ref_[i - 4]; }
+
   explicit ShipRollDamperDevice(const ShipScene& s)
       : s_(s),
         sea_(s.sea, s.loop.tick_s() / s.loop.substeps, s.loop.seed, s.ship.c),
@@ -164,7 +177,9 @@ class ShipRollDamperDevice {
   }
 
   void advance(std::int64_t tick) {
+    window_.before_tick(tick, x_, {plant_.command_Nm, plant_.brake_Nms});
     driver_.advance_tick(tick, x_);
+    window_.after_tick(tick, x_);
     ref_driver_.advance_tick(tick, x_ref_);
     if (tick + 1 >= settle_tick_) {
       roll_.add(x_[0]);
@@ -172,9 +187,26 @@ class ShipRollDamperDevice {
     }
     precession_peak_ = std::fmax(precession_peak_, std::fabs(x_[1]));
     torque_peak_ = std::fmax(torque_peak_, std::fabs(plant_.command_Nm));
+    roll_rate_peak_ = std::fmax(roll_rate_peak_, std::fabs(x_[2]));
+    precession_rate_peak_ = std::fmax(precession_rate_peak_, std::fabs(x_[3]));
+    penetration_peak_ = std::fmax(penetration_peak_, std::fabs(x_[1]) - s_.ship.beta_stop);
   }
 
   bool finite() const { return x_.allFinite() && x_ref_.allFinite(); }
+  const ShipInSea& plant() const { return plant_; }  // the accuracy study's input tap
+  const ShipInSea::State& state() const { return x_; }
+
+  // report.json "error_estimate" (tools/accuracy/half_step_window.hpp): the stabilized ship over 10 s from
+  // the start of the statistics (or the run's middle, if shorter).
+  nlohmann::json error_estimate() const {
+    const auto apply = [](ShipInSea& p, const ShipRollDamperStudySetup::TickInputs& in) {
+      p.command_Nm = in.command_Nm;
+      p.brake_Nms = in.brake_Nms;
+    };
+    return window_.estimate<dynamics::Rk4>(plant_, apply, s_.loop.tick_ns, s_.loop.substeps, 4,
+                                           {"roll_rad", "precession_rad", "roll_rate_rad_s", "precession_rate_rad_s"},
+                                           "none watched: sea, brake, control and roll damping act");
+  }
 
   static std::vector<std::string> columns() {
     return {"roll_rad", "roll_unstabilized_rad", "precession_rad", "roll_rate_rad_s", "precession_rate_rad_s",
@@ -205,7 +237,48 @@ class ShipRollDamperDevice {
             {"precession_max_rad", precession_peak_},
             {"precession_torque_max_Nm", torque_peak_},
             {"wave_moment_rms_Nm", sea_.rms()},
-            {"statistics_from_s", s_.settle_s}};
+            {"statistics_from_s", s_.settle_s},
+            {"stop_penetration_max_rad", std::fmax(penetration_peak_, 0.0)},
+            {"stop_penetration_bound_rad", stop_penetration_bound()}};
+  }
+
+  // report.json "plant": what the loop assembled. The gyro is (14.8) with its large-angle terms — both
+  // inertias (roll A, case B), so nutation and precession; no reduced model is offered: for a ship gyro
+  // the two are not separated (ω_N = H/sqrt(AB) = 1.5 rad/s against the roll's 0.6 rad/s for the digest's
+  // ship, ε = O(1)), the condition under which precession theory P0 holds (digest §8) fails.
+  nlohmann::json report_extra() const {
+    nlohmann::json parts = nlohmann::json::array({"ship roll + gyro case precession (14.8), large-angle terms",
+                                                  "precession end stops (spring-damper)",
+                                                  "locked reference ship in the same sea"});
+    if (s_.ship.H == 0.0) parts[0] = "ship roll + gyro case (14.8) with H = 0: no gyroscopic coupling";
+    if (s_.ship.w > 0.0) parts.push_back("wall-sided righting arm");
+    if (s_.ship.d1 > 0.0 || s_.ship.d2 > 0.0) parts.push_back("viscous roll / precession damping");
+    parts.push_back(s_.sea.regular ? "regular sea (14.9)" : "irregular sea");
+    if (s_.sensors.roll_angle_noise_rad > 0.0 || s_.sensors.roll_rate_noise_density > 0.0 ||
+        s_.sensors.precession_rate_noise_density > 0.0 || s_.sensors.roll_rate_bias != 0.0) {
+      parts.push_back("sensor noise");
+    }
+    return {{"plant",
+             {{"model", models::ShipRollDamper::kName},
+              {"fidelity", "full (14.8): no reduced model (epsilon = O(1) for a ship gyro)"},
+              {"components", parts},
+              {"mechanical_states", 4},
+              {"reference_ship_states", 4},
+              {"state_size", 8},
+              {"device_bytes", sizeof(ShipRollDamperDevice)},
+              {"integrator", "rk4"},
+              {"plant_substeps", s_.loop.substeps}}}};
+  }
+  // Largest penetration of the end stops the run's peaks allow (models/ship_roll_damper.hpp: k_s = B ω_s²,
+  // ζ_s): the quasi-static push into the stop, (H |φ'|max + |M2|max + |Q| φ'²max/2)/k_s, plus the impact at |β'|max, whose
+  // largest excursion in a spring-damper is |β'|/ω_s, or |β'|/(e ω_s) for ζ_s ≥ 1 (the force is clipped at
+  // zero, which can only shorten the excursion; the pendulum moment q pushes out of the stop and is left out).
+  double stop_penetration_bound() const {
+    const auto& p = s_.ship;
+    const double ks = p.B * p.stop_frequency * p.stop_frequency;
+    const double impact = precession_rate_peak_ / p.stop_frequency * (p.stop_damping_ratio >= 1.0 ? std::exp(-1.0) : 1.0);
+    const double inertial = 0.5 * std::abs(p.Q) * roll_rate_peak_ * roll_rate_peak_;  // |Q sinβ cosβ φ'²|
+    return (p.H * roll_rate_peak_ + torque_peak_ + inertial) / ks + impact;
   }
 
  private:
@@ -228,6 +301,9 @@ class ShipRollDamperDevice {
   msg::ActuatorFrame last_{};
   RunningStats roll_, roll_ref_;
   double precession_peak_{0.0}, torque_peak_{0.0};
+  double roll_rate_peak_{0.0}, precession_rate_peak_{0.0}, penetration_peak_{-1e300};
+  accuracy::HalfStepWindow<ShipInSea, ShipRollDamperStudySetup::TickInputs> window_{
+      std::min(settle_tick_, s_.loop.ticks() / 2), static_cast<std::int64_t>(10.0 / s_.loop.tick_s())};
 };
 
 bool read_scene(SceneReader& r, ShipScene& s) {
@@ -242,7 +318,8 @@ bool read_scene(SceneReader& r, ShipScene& s) {
   p.q = r.required("gyro", "q", Range::non_negative(), "pendulous stiffness of the case G s [N m/rad]");
   p.d2 = r.number("gyro", "d2", 0.0, Range::non_negative(),
                   "viscous friction of the precession bearing (the brake is the controller's) [N m s/rad]");
-  p.H = r.required("gyro", "H", Range::positive(), "rotor spin momentum [N m s]");
+  // H = 0 is a gyro without spin (zero-spin case, docs/extreme.md): the case is a pendulum, no damping.
+  p.H = r.required("gyro", "H", Range::non_negative(), "rotor spin momentum [N m s]");
   p.beta_stop = kDeg * r.number("gyro", "beta_stop_deg", 70.0, Range::open_closed(0.0, 89.0),
                                 "hard end stops of the precession angle [deg]");
   p.stop_frequency = r.number("gyro", "stop_frequency", 100.0, Range::positive(), "end-stop stiffness sqrt(k/B) [rad/s]");
@@ -326,6 +403,38 @@ int run_ship_roll_damper(SceneReader& reader, const RunRequest& req) {
   if (req.check_only) return 0;
   auto device = std::make_unique<ShipRollDamperDevice>(*scene);
   return run_device(*device, scene->loop, req);
+}
+
+}  // namespace gyrostab::tools
+
+// The accuracy study's view of a scene (ship_roll_damper_study.hpp).
+namespace gyrostab::tools {
+
+int ship_roll_damper_study_setup(SceneReader& reader, std::int64_t ticks, ShipRollDamperStudySetup& out) {
+  auto scene = std::make_unique<ShipScene>();
+  if (!read_scene(reader, *scene)) return 2;
+  out.loop = scene->loop;
+  out.scene_duration_s = scene->loop.duration_s;
+  if (ticks >= 0) out.loop.duration_s = static_cast<double>(ticks) * out.loop.tick_s();
+  out.ship = scene->ship;
+  out.regular_sea = scene->sea.regular;
+  out.wave = scene->sea.wave;
+  out.spectrum = scene->sea.spectrum;
+  out.irregular = scene->sea.irregular;
+  out.irregular.grid_period = scene->loop.tick_s() / scene->loop.substeps;  // as SeaMoment sets it
+  out.kappa = scene->sea.kappa;
+  out.sea_stream = kSeaStream;
+  auto device = std::make_unique<ShipRollDamperDevice>(*scene);
+  const std::int64_t n = out.loop.ticks();
+  out.inputs.reserve(static_cast<std::size_t>(n));
+  out.states.reserve(static_cast<std::size_t>(n));
+  auto tap = accuracy::make_input_tap(*device, [&out](const ShipRollDamperDevice& d, std::int64_t) {
+    out.inputs.push_back({d.plant().command_Nm, d.plant().brake_Nms});
+    out.states.push_back(d.state());
+  });
+  const LoopOutcome o = run_closed_loop(tap, out.loop, nullptr);
+  out.closed_loop_wall_s = o.wall_s;
+  return o.diverged ? 3 : 0;
 }
 
 }  // namespace gyrostab::tools

@@ -4,7 +4,8 @@
 //   3. the command computed from the frame of tick k is applied at tick k + latency (zero-order hold;
 //      until then the device's initial command), and the plant integrates [k, k + 1).
 // Allocation-free: the latency pipe is a fixed array, the recorder's table is sized before the loop.
-// A runtime guard stops at the first non-finite plant state and says at which tick.
+// A runtime guard stops at the first non-finite plant state and says at which tick and, for a device that
+// names its state (state_guard.hpp), which component with its last finite value.
 #pragma once
 
 #include <array>
@@ -16,6 +17,7 @@
 #include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/sensor_frame.hpp"
 #include "tools/run/recorder.hpp"
+#include "tools/run/state_guard.hpp"
 #include "tools/scene/loop_config.hpp"
 
 namespace gyrostab::tools {
@@ -34,7 +36,21 @@ struct LoopOutcome {
   std::int64_t ticks_run{0};
   bool diverged{false};           // the plant state became non-finite
   std::int64_t diverged_tick{-1};
+  NonFiniteState diverged_state{};  // which component, its value and last finite value (state_guard.hpp)
   double wall_s{0.0};
+  bool interrupted{false};        // stopped at a tick boundary by the tick sink (stop signal, failed log write)
+};
+
+// Tick sink concept (a bus log, tools/run/bus_log_sink.hpp): sees every tick's sensor frame and the
+// controller's actuator frame of the same tick, right after the controller step, and may stop the loop at a
+// tick boundary. Must not allocate. NoTickSink, the default, compiles away: the no-log loop is unchanged.
+//   static constexpr bool kActive = true;
+//   bool stop_requested();                                                  // polled before each tick
+//   bool record(std::int64_t tick, const msg::SensorFrame&, const msg::ActuatorFrame&);  // false: stop
+struct NoTickSink {
+  static constexpr bool kActive = false;
+  bool stop_requested() { return false; }
+  bool record(std::int64_t, const msg::SensorFrame&, const msg::ActuatorFrame&) { return true; }
 };
 
 // Device concept:
@@ -42,11 +58,13 @@ struct LoopOutcome {
 //   void actuate(const msg::ActuatorFrame& cmd);
 //   void advance(std::int64_t tick);
 //   bool finite() const;
+//   (optional) kGuardedStates, state_name(i), state_value(i) — state_guard.hpp
 //   void record(double* row) const;          // Device::columns() names, in order
 //   msg::ActuatorFrame initial_command() const;
 //   auto& controller();                      // step(tick, const SensorFrame*, ActuatorFrame&)
-template <class Device>
-LoopOutcome run_closed_loop(Device& device, const LoopConfig& cfg, Recorder* recorder, bool progress = false) {
+template <class Device, class Sink = NoTickSink>
+LoopOutcome run_closed_loop(Device& device, const LoopConfig& cfg, Recorder* recorder, bool progress = false,
+                            Sink* sink = nullptr) {
   LoopOutcome out;
   const std::int64_t ticks = cfg.ticks();
   const int latency = cfg.latency_ticks;
@@ -54,12 +72,25 @@ LoopOutcome run_closed_loop(Device& device, const LoopConfig& cfg, Recorder* rec
   msg::SensorFrame sensor{};
   msg::ActuatorFrame command{};
   msg::ActuatorFrame applied = device.initial_command();
+  StateGuard<Device> guard;
   const auto start = std::chrono::steady_clock::now();
   const bool show = progress && isatty(STDERR_FILENO);
   auto last_report = start;
   for (std::int64_t k = 0; k < ticks; ++k) {
+    if constexpr (Sink::kActive) {
+      if (sink != nullptr && sink->stop_requested()) {
+        out.interrupted = true;
+        break;
+      }
+    }
     device.sense(k, sensor);
     device.controller().step(static_cast<std::uint64_t>(k), &sensor, command);
+    if constexpr (Sink::kActive) {
+      if (sink != nullptr && !sink->record(k, sensor, command)) {
+        out.interrupted = true;
+        break;
+      }
+    }
     if (latency == 0) {
       applied = command;
     } else {
@@ -67,11 +98,13 @@ LoopOutcome run_closed_loop(Device& device, const LoopConfig& cfg, Recorder* rec
       if (k >= latency) applied = pipe[static_cast<std::size_t>(k % (kMaxLatencyTicks + 1))];
     }
     device.actuate(applied);
+    guard.remember(device);
     device.advance(k);
     out.ticks_run = k + 1;
     if (!device.finite()) {
       out.diverged = true;
       out.diverged_tick = k;
+      out.diverged_state = guard.locate(device);
       break;
     }
     if (recorder && recorder->due(k + 1)) {

@@ -1,16 +1,353 @@
-// The firmware controller as its own process (Role::kController): NOT IMPLEMENTED YET (issue 4).
+// The firmware controller as its own process (Role::kController, `gyrostab controller SCENE`): per tick k it
+// takes the sensor frame of tick k from the link, runs device.controller().step(k, frame or nullptr, out) —
+// the same call as in process — and publishes `out`. The process builds the whole device from the same
+// scene file as the plant and never touches the plant part.
+//
+// Sensor frames are screened in two places. Here: decodable (size, fingerprint), and for the expected tick
+// with an advancing sequence (hil/link/actuator_frame_check.hpp's FrameOrder): older ticks are "stale", an
+// exact repeat of the last one is "repeated" (lockstep: answered with the cached command, the plant's recovery
+// of a lost datagram), a later tick (at most kMaxAheadTicks ahead) means the plant withheld the frames in
+// between, which are stepped as missing. Content (NaN, ranges, sensor status) is the firmware fault monitor's
+// job, as on the target: it holds the last good frame, then latches the safe state with the reason in every
+// ActuatorFrame's status (firmware/fault/fault_monitor.hpp).
+// Lockstep: a wait ends at the receive timeout ⇒ the plant is lost: the controller steps without frames until
+// its fault monitor is in the safe state (hold_ticks + 1 ticks), publishing those safe commands for any drive
+// still listening, then exits 6. Real time: see link_settings.hpp; a tick whose frame misses its deadline is
+// stepped with nullptr; silence for the receive timeout ends the run (exit 6).
+// Allocation-free after start-up (tests/alloc/lcm_loop_alloc_test.cpp).
 #pragma once
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "firmware/fault/fault_monitor.hpp"
+#include "hil/lcm/lcm_transport.hpp"
+#include "hil/link/actuator_frame_check.hpp"
+#include "hil/link/frame_endpoint.hpp"
+#include "hil/link/memory_bus.hpp"
+#include "hil/rt/deadline_pacer.hpp"
+#include "hil/rt/rt_setup.hpp"
+#include "tools/log/stop_signal.hpp"
+#include "tools/run/controller_report.hpp"
+#include "tools/run/link_report.hpp"
+#include "tools/run/can_link_setup.hpp"  // CAN FD (issue 7): FrameEndpoint<can::CanBusTransport>
+#include "tools/run/link_settings.hpp"
+#include "tools/run/link_stats.hpp"
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {
 
+struct ControllerLinkOutcome {
+  std::int64_t ticks_run{0};
+  bool peer_lost{false};
+  std::int64_t lost_at_tick{-1};       // the tick whose sensor frame never came
+  std::int64_t silent_ns{0};
+  std::int64_t safe_state_tick{-1};    // first tick the fault monitor was in the safe state (any cause)
+  std::int64_t missing_ticks{0};       // ticks stepped without a frame
+  bool transport_error{false};
+  int stop_signal{0};
+};
+
+enum class SensorWait { kAccepted, kSkipped, kMissing, kLost, kStopped, kError };
+
+template <class Transport>
+SensorWait wait_for_sensor(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& order, std::int64_t k,
+                           std::int64_t deadline_ns, std::int64_t lost_at_ns, bool lockstep, const LinkSettings& s,
+                           std::int64_t last_sent_tick, std::int64_t& last_republish_ns, msg::SensorFrame& frame,
+                           msg::SensorFrame& early) {
+  hil::LinkCounters& c = ep.counters();
+  const auto tick = static_cast<std::uint64_t>(k);
+  for (;;) {
+    const std::int64_t until = std::min(deadline_ns, lost_at_ns);
+    msg::SensorFrame f{};
+    const hil::RxStatus r = ep.receive(until, f);
+    if (r == hil::RxStatus::kError) return SensorWait::kError;
+    if (stop_signal_received() != 0) return SensorWait::kStopped;
+    if (r != hil::RxStatus::kMessage) {
+      const std::int64_t now = hil::monotonic_ns();
+      if (now >= lost_at_ns) return SensorWait::kLost;
+      if (now >= deadline_ns) return SensorWait::kMissing;
+      continue;
+    }
+    const hil::OrderVerdict o = order.classify(f.tick, f.sequence, tick);
+    if (o == hil::OrderVerdict::kExpected) {
+      order.accept(f.tick, f.sequence);
+      ++c.accepted;
+      frame = f;
+      return SensorWait::kAccepted;
+    }
+    if (o == hil::OrderVerdict::kAhead && f.tick - tick <= static_cast<std::uint64_t>(kMaxAheadTicks)) {
+      early = f;  // the plant withheld ticks k .. f.tick - 1: they are stepped as missing, then this one
+      return SensorWait::kSkipped;
+    }
+    hil::count_order_rejection(o, c);
+    if (o == hil::OrderVerdict::kRepeated && lockstep && last_sent_tick >= 0 &&
+        f.tick == static_cast<std::uint64_t>(last_sent_tick)) {
+      // The plant did not get our answer (or its copy of the frame crossed ours): answer again, at most once
+      // per resend interval so that a burst of copies is not answered by a burst.
+      const std::int64_t now = hil::monotonic_ns();
+      if (now - last_republish_ns >= s.resend_ns) {
+        ep.resend();
+        last_republish_ns = now;
+      }
+    }
+  }
+}
+
+// The controller outputs the safe command: latched safe state, or still awaiting its first good frame.
+template <class Controller>
+bool in_safe_state(const Controller& c) {
+  if constexpr (requires { c.monitor_state(); }) {
+    return c.monitor_state() == firmware::MonitorState::kSafe ||
+           c.monitor_state() == firmware::MonitorState::kAwaitingFirstFrame;
+  } else {
+    return false;
+  }
+}
+
+template <class Device, class Transport>
+void run_controller_loop(Device& device, const LoopConfig& cfg, const RunRequest& req, const LinkSettings& s,
+                         hil::FrameEndpoint<Transport>& ep, LinkStats& stats, ControllerLinkOutcome& link) {
+  auto& ctl = device.controller();
+  const TransportOptions& t = req.transport;
+  const std::int64_t ticks = cfg.ticks();
+  hil::FrameOrder order;
+  JitterInjector jitter(s, cfg.seed);
+  msg::SensorFrame frame{}, early{};
+  bool have_early = false;
+  msg::ActuatorFrame out{}, published{};
+  std::int64_t last_sent_tick = -1;
+  std::int64_t last_republish = 0;
+  std::int64_t anchor_ns = 0, anchor_tick = -1;  // real time: arrival of the last accepted frame
+  std::int64_t last_heard = hil::monotonic_ns();
+  bool heard_any = false;
+  for (std::int64_t k = 0; k < ticks; ++k) {
+    if (stop_signal_received() != 0) {
+      link.stop_signal = stop_signal_received();
+      break;
+    }
+    const bool lockstep = !s.real_time || anchor_tick < 0;
+    const std::int64_t deadline =
+        lockstep ? hil::kNoDeadline
+                 : anchor_ns + (k - anchor_tick) * s.period_ns +
+                       static_cast<std::int64_t>(kControllerWindow * static_cast<double>(s.period_ns));
+    const std::int64_t lost_at =
+        (lockstep ? hil::monotonic_ns() : last_heard) + (heard_any ? s.timeout_ns : s.start_timeout_ns);
+    SensorWait w = SensorWait::kMissing;
+    if (have_early && early.tick == static_cast<std::uint64_t>(k)) {
+      frame = early;
+      have_early = false;
+      order.accept(frame.tick, frame.sequence);
+      ++ep.counters().accepted;
+      w = SensorWait::kAccepted;
+    } else if (have_early) {
+      w = SensorWait::kMissing;  // a withheld tick before the early frame
+    } else {
+      w = wait_for_sensor(ep, order, k, deadline, lost_at, lockstep, s, last_sent_tick, last_republish, frame,
+                          early);
+      if (w == SensorWait::kSkipped) {
+        have_early = true;
+        w = SensorWait::kMissing;
+      }
+    }
+    const std::int64_t t_start = hil::monotonic_ns();
+    if (w == SensorWait::kStopped) {
+      link.stop_signal = stop_signal_received();
+      break;
+    }
+    if (w == SensorWait::kError) {
+      link.transport_error = true;
+      break;
+    }
+    if (w == SensorWait::kLost) {
+      link.peer_lost = true;
+      link.lost_at_tick = k;
+      link.silent_ns = t_start - last_heard;
+      // Lockstep: time stood still while waiting; take the fault monitor to its safe state now, tick by tick,
+      // and publish those commands. Real time: it has got there already, tick by tick.
+      for (std::int64_t j = k; j < k + kMaxAheadTicks && link.safe_state_tick < 0; ++j) {
+        ctl.step(static_cast<std::uint64_t>(j), nullptr, out);
+        ++link.missing_ticks;
+        ++ep.counters().missed_frames;
+        ep.send(out, j * cfg.tick_ns / 1000);
+        link.ticks_run = j + 1;
+        if (in_safe_state(ctl)) link.safe_state_tick = j;
+      }
+      break;
+    }
+    stats.tick_started(t_start, s.period_ns);
+    const bool got = w == SensorWait::kAccepted;
+    if (got) {
+      last_heard = t_start;
+      heard_any = true;
+      if (s.real_time) {
+        anchor_ns = t_start;
+        anchor_tick = k;
+      }
+    } else {
+      ++link.missing_ticks;
+      ++ep.counters().missed_frames;
+    }
+    ctl.step(static_cast<std::uint64_t>(k), got ? &frame : nullptr, out);
+    if (link.safe_state_tick < 0 && in_safe_state(ctl)) link.safe_state_tick = k;
+    const std::int64_t t_stepped = hil::monotonic_ns();
+    if (const std::int64_t d = jitter.next(); d > 0) hil::spin_for(d);
+    if (t.actuator_drop.covers(k)) {
+      ++ep.counters().dropped_by_fault;
+    } else {
+      published = out;
+      if (t.actuator_corrupt.covers(k)) {
+        published.gimbal_torque_Nm[msg::kAxis2] = std::numeric_limits<double>::quiet_NaN();
+        ++ep.counters().corrupted_by_fault;
+      }
+      ep.send(published, k * cfg.tick_ns / 1000);
+      last_sent_tick = k;
+    }
+    const std::int64_t t_end = hil::monotonic_ns();
+    stats.compute.add(t_stepped - t_start);
+    // Real time: the command is late if it leaves after the plant's window for it closes (approximately: the
+    // plant's clock is not ours).
+    const auto plant_margin =
+        static_cast<std::int64_t>((kPlantWindow - kControllerWindow) * static_cast<double>(s.period_ns));
+    if (s.real_time && deadline != hil::kNoDeadline && t_end > deadline + plant_margin) {
+      ++stats.overruns;
+    }
+    link.ticks_run = k + 1;
+  }
+}
+
+template <class Device, class Transport>
+int run_controller_over(Device& device, const LoopConfig& loop_in, const RunRequest& req, Transport& transport,
+                        const nlohmann::json& link_info, const hil::RtSetup* rt) {
+  const LoopConfig& loop = loop_in;  // the scene's, for the report; run_loop: --ticks sets the loop's length
+  LoopConfig run_loop = loop_in;
+  if (req.ticks >= 0) run_loop.duration_s = static_cast<double>(req.ticks) * run_loop.tick_s();
+  const LinkSettings s = link_settings(run_loop, req.transport);
+  hil::FrameEndpoint<Transport> ep(transport);
+  auto stats = std::make_unique<LinkStats>();
+  ControllerLinkOutcome link;
+  const auto start = std::chrono::steady_clock::now();
+  // Installed for the rest of the run: a stop request that comes while the outputs are written only sets the
+  // flag (the run is ending anyway), so it cannot kill the process half way through report.json.
+  StopSignalGuard stop_guard;
+  {
+    if (req.before_loop) req.before_loop();
+    run_controller_loop(device, run_loop, req, s, ep, *stats, link);
+    if (req.after_loop) req.after_loop();
+  }
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  auto& ctl = device.controller();
+  nlohmann::json timing{{"ticks", link.ticks_run},
+                        {"wall_s", wall_s},
+                        {"ticks_per_second", wall_s > 0 ? static_cast<double>(link.ticks_run) / wall_s : 0.0}};
+  timing.update(link_timing_json(*stats, s));
+  timing["controller"] = controller_report(ctl);
+  nlohmann::json l = link_info;
+  l["role"] = "controller";
+  l["counters"] = counters_json(ep.counters());
+  if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level (issue 7)
+  l["missing_ticks"] = link.missing_ticks;
+  l["safe_state_tick"] = link.safe_state_tick >= 0 ? nlohmann::json(link.safe_state_tick) : nlohmann::json();
+  std::string happened = "completed";
+  if (link.peer_lost) {
+    happened = "plant lost: no sensor frame for tick " + std::to_string(link.lost_at_tick) + " within " +
+               std::to_string(link.silent_ns / 1'000'000) + " ms; " +
+               (link.safe_state_tick >= 0 ? "safe state from tick " + std::to_string(link.safe_state_tick)
+                                          : std::string("safe state NOT reached"));
+    l["peer"] = {{"lost", true},
+                 {"lost_at_tick", link.lost_at_tick},
+                 {"silent_ms", static_cast<double>(link.silent_ns) * 1e-6},
+                 {"safe_state_tick", link.safe_state_tick},
+                 {"reaction_ticks", link.safe_state_tick >= 0 ? link.safe_state_tick - link.lost_at_tick + 1 : -1}};
+  } else if (link.transport_error) {
+    happened = "transport error";
+  } else if (link.stop_signal != 0) {
+    happened = std::string("stopped by ") + signal_name(link.stop_signal) + " after tick " +
+               std::to_string(link.ticks_run - 1);
+  }
+  l["what_happened"] = happened;
+  if (rt != nullptr) l["real_time_setup"] = {{"sched_fifo", rt->fifo}, {"priority", rt->priority},
+                                             {"mlockall", rt->memory_locked}, {"message", rt->message}};
+  nlohmann::json report{{"scene", scene_summary(loop, req.scene_path)}, {"timing", timing}, {"link", l}};
+  if (req.report_out) *req.report_out = report;
+  if (req.write_outputs) {
+    std::error_code ec;
+    std::filesystem::create_directories(req.out_dir, ec);
+    std::ofstream f(req.out_dir + "/report.json");
+    f << report.dump(2) << "\n";
+    if (ec || !f) {
+      std::fprintf(stderr, "gyrostab controller: cannot write %s/report.json\n", req.out_dir.c_str());
+      return 3;
+    }
+  }
+  if (link.peer_lost) {
+    std::fprintf(stderr, "gyrostab controller: %s: %s (receive timeout %lld ms)\n", loop.name.c_str(),
+                 happened.c_str(), static_cast<long long>(req.transport.timeout_ms));
+    return kExitPeerLost;
+  }
+  if (link.transport_error) {
+    std::fprintf(stderr, "gyrostab controller: %s: the transport failed after tick %lld\n", loop.name.c_str(),
+                 static_cast<long long>(link.ticks_run - 1));
+    return 3;
+  }
+  if (link.stop_signal != 0) {
+    std::fprintf(stderr, "gyrostab controller: %s: %s\n", loop.name.c_str(), happened.c_str());
+    return 128 + link.stop_signal;
+  }
+  return 0;
+}
+
+// Opens the link of the request and runs the controller over it (run_device.hpp dispatches Role::kController).
 template <class Device>
-int run_controller_process(Device&, const LoopConfig& loop, const RunRequest&) {
-  std::fprintf(stderr, "gyrostab: %s: the controller process is not implemented yet\n", loop.name.c_str());
-  return 2;
+int run_controller_process(Device& device, const LoopConfig& loop, const RunRequest& req) {
+  const TransportOptions& t = req.transport;
+  hil::RtSetup rt;
+  if (t.real_time) {
+    rt = hil::setup_real_time(t.rt_priority);
+    std::fprintf(stderr, "gyrostab controller: %s\n", rt.message.c_str());
+  }
+  if (!t.can_if.empty()) {  // CAN FD over SocketCAN (issue 7, tools/run/can_link_setup.hpp, docs/can.md)
+    auto bus = std::make_unique<can::CanBusTransport>();
+    nlohmann::json info;
+    if (const int rc = open_can_link(*bus, loop, req, /*plant_side=*/false, info); rc != 0) return rc;
+    return run_controller_over(device, loop, req, *bus, info, t.real_time ? &rt : nullptr);
+  }
+  if (t.memory_bus != nullptr) {
+    hil::MemoryTransport transport(t.memory_bus->to_plant, t.memory_bus->to_controller);
+    return run_controller_over(device, loop, req, transport, nlohmann::json{{"transport", "memory"}},
+                               t.real_time ? &rt : nullptr);
+  }
+  if (!hil::valid_channel_suffix(t.channel_suffix)) {
+    std::fprintf(stderr, "gyrostab controller: --channel-suffix '%s': only letters, digits, '_' and '-' (at most 40)\n",
+                 t.channel_suffix.c_str());
+    return 2;
+  }
+  auto transport = std::make_unique<hil::LcmTransport>();
+  std::string error;
+  if (!transport->open(sensor_url(t), actuator_channel(t), sensor_channel(t), hil::kLcmQueueCapacity, error,
+                       actuator_url(t))) {
+    std::fprintf(stderr, "gyrostab controller: %s\n", error.c_str());
+    return 3;
+  }
+  const nlohmann::json info{{"transport", "lcm"},
+                            {"url", t.lcm_url},
+                            {"publishes_on", actuator_url(t)},
+                            {"subscribes_on", sensor_url(t)},
+                            {"publishes", actuator_channel(t)},
+                            {"subscribes", sensor_channel(t)},
+                            {"queue_capacity", hil::kLcmQueueCapacity},
+                            {"timeout_ms", t.timeout_ms},
+                            {"start_timeout_ms", t.start_timeout_ms}};
+  return run_controller_over(device, loop, req, *transport, info, t.real_time ? &rt : nullptr);
 }
 
 }  // namespace gyrostab::tools

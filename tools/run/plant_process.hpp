@@ -1,16 +1,443 @@
-// The plant as its own process (Role::kPlant): NOT IMPLEMENTED YET (issue 4).
+// The plant as its own process (Role::kPlant, `gyrostab plant SCENE`): the loop of run_closed_loop
+// (closed_loop.hpp) with the controller step replaced by an exchange over a link:
+//   sense(k) → publish SensorFrame{k} → wait for the ActuatorFrame of tick k → latency pipe → actuate → advance
+// The same device code in the same order as in process, and the frames cross the link bit for bit
+// (hil/lcm/frame_codec.hpp), so a lockstep run is bit-identical to the in-process run of the same scene and
+// seed (tests/lcm/). The process builds the whole device (plant + controller) and never steps its controller.
+//
+// Every received actuator frame is checked before use (hil/link/actuator_frame_check.hpp): decodable, finite,
+// within the device's limits (actuator_limits(), if the device has it), for the expected tick with an advancing
+// sequence. A tick without an accepted command gets the drive watchdog's command (zero torque, brake released)
+// in its latency-pipe slot, as real drives do.
+// Lockstep: a frame rejected for its content (NaN, out of range) for the expected tick is followed by a grace
+// of one resend interval for a good one, then the tick gets zero torque and the loop moves on (a faulty
+// controller cannot stall the plant). Silence for the receive timeout ⇒ the controller is lost: the loop runs
+// the `latency` ticks that the zero command needs to reach the plant, stops, writes its outputs and exits 6.
+// Real time: see link_settings.hpp; silence for the receive timeout also ends the run with exit 6.
+//
+// Tick sink (closed_loop.hpp concept, e.g. the bus log of --log): record(k, published sensor frame, command
+// used for tick k) right after the exchange, before actuation; stop_requested() is polled before each tick.
+//
+// Allocation-free after start-up: the endpoint's buffers, the statistics histograms and the recorder are
+// allocated before tick 0 (tests/alloc/lcm_loop_alloc_test.cpp).
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <limits>
+#include <memory>
+#include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "hil/lcm/lcm_transport.hpp"
+#include "hil/link/actuator_frame_check.hpp"
+#include "hil/link/frame_endpoint.hpp"
+#include "hil/link/memory_bus.hpp"
+#include "hil/rt/deadline_pacer.hpp"
+#include "hil/rt/rt_setup.hpp"
+#include "tools/log/stop_signal.hpp"
+#include "tools/run/bus_log_sink.hpp"
+#include "tools/run/closed_loop.hpp"
+#include "tools/run/link_report.hpp"
+#include "tools/run/can_link_setup.hpp"  // CAN FD (issue 7): FrameEndpoint<can::CanBusTransport>
+#include "tools/run/link_settings.hpp"
+#include "tools/run/link_stats.hpp"
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {
 
+// The device's command limits, if it states them (optional Device member `hil::ActuatorLimits
+// actuator_limits() const`); otherwise only finiteness and the brake range are checked.
 template <class Device>
-int run_plant_process(Device&, const LoopConfig& loop, const RunRequest&) {
-  std::fprintf(stderr, "gyrostab: %s: the plant process is not implemented yet\n", loop.name.c_str());
-  return 2;
+hil::ActuatorLimits actuator_limits_of(const Device& d) {
+  if constexpr (requires { d.actuator_limits(); }) {
+    hil::ActuatorLimits l = d.actuator_limits();
+    l.from_scene = true;
+    return l;
+  } else {
+    return hil::ActuatorLimits{};
+  }
+}
+
+// What happened to the link during a plant run (report.json "peer" and "drive_watchdog").
+struct PlantLinkOutcome {
+  bool peer_lost{false};
+  std::int64_t lost_at_tick{-1};            // the tick whose command never came
+  std::int64_t silent_ns{0};                // how long the controller had been silent then
+  std::int64_t zero_torque_from_tick{-1};   // first tick the plant integrated with the watchdog's zero command
+                                            // after the loss
+  std::int64_t watchdog_ticks{0};           // ticks whose slot got the watchdog's zero command (any cause)
+  std::int64_t first_watchdog_tick{-1};
+  bool transport_error{false};
+  int stop_signal{0};
+};
+
+enum class CommandWait { kAccepted, kMissing, kLost, kStopped, kError };
+
+// Waits for the actuator frame of tick k (see the header for the rules). `cmd` receives it on kAccepted.
+template <class Transport>
+CommandWait wait_for_command(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& order,
+                             const hil::ActuatorLimits& limits, std::int64_t k, std::int64_t deadline_ns,
+                             bool lockstep, std::int64_t lost_at_ns, const LinkSettings& s,
+                             msg::ActuatorFrame& cmd) {
+  hil::LinkCounters& c = ep.counters();
+  std::int64_t next_resend = lockstep ? hil::monotonic_ns() + s.resend_ns : hil::kNoDeadline;
+  std::int64_t grace_until = hil::kNoDeadline;
+  const auto tick = static_cast<std::uint64_t>(k);
+  for (;;) {
+    const std::int64_t until = std::min({deadline_ns, lost_at_ns, next_resend, grace_until});
+    msg::ActuatorFrame f{};
+    const hil::RxStatus r = ep.receive(until, f);
+    if (r == hil::RxStatus::kError) return CommandWait::kError;
+    if (stop_signal_received() != 0) return CommandWait::kStopped;
+    if (r != hil::RxStatus::kMessage) {
+      const std::int64_t now = hil::monotonic_ns();
+      if (now >= lost_at_ns) return CommandWait::kLost;
+      if (now >= deadline_ns || now >= grace_until) return CommandWait::kMissing;
+      if (now >= next_resend) {
+        ep.resend();
+        next_resend = now + s.resend_ns;
+      }
+      continue;
+    }
+    const hil::ActuatorVerdict v = hil::check_actuator_values(f, limits);
+    if (v != hil::ActuatorVerdict::kOk) {
+      if (v == hil::ActuatorVerdict::kNonFinite) ++c.rejected_non_finite;
+      else ++c.rejected_out_of_range;
+      // The controller answered this tick with a command no drive may apply: no resend will change that.
+      if (lockstep && f.tick == tick && grace_until == hil::kNoDeadline) {
+        grace_until = hil::monotonic_ns() + s.resend_ns;
+        next_resend = hil::kNoDeadline;
+      }
+      continue;
+    }
+    const hil::OrderVerdict o = order.classify(f.tick, f.sequence, tick);
+    if (o != hil::OrderVerdict::kExpected) {
+      hil::count_order_rejection(o, c);
+      continue;
+    }
+    order.accept(f.tick, f.sequence);
+    ++c.accepted;
+    cmd = f;
+    return CommandWait::kAccepted;
+  }
+}
+
+template <class Device, class Transport, class Sink = NoTickSink>
+LoopOutcome run_plant_loop(Device& device, const LoopConfig& cfg, const RunRequest& req, const LinkSettings& s,
+                           hil::FrameEndpoint<Transport>& ep, LinkStats& stats, PlantLinkOutcome& link,
+                           Recorder* recorder, Sink* sink = nullptr) {
+  LoopOutcome out;
+  const std::int64_t ticks = cfg.ticks();
+  const int latency = cfg.latency_ticks;
+  const hil::ActuatorLimits limits = actuator_limits_of(device);
+  const TransportOptions& t = req.transport;
+  hil::FrameOrder order;
+  JitterInjector jitter(s, cfg.seed);
+  std::array<msg::ActuatorFrame, kMaxLatencyTicks + 1> pipe{};
+  msg::SensorFrame sensor{};
+  msg::SensorFrame published{};
+  msg::ActuatorFrame command{};
+  msg::ActuatorFrame applied = device.initial_command();
+  StateGuard<Device> guard;
+  std::int64_t epoch = 0;
+  std::int64_t last_heard = hil::monotonic_ns();
+  std::int64_t stop_after = std::numeric_limits<std::int64_t>::max();
+  const auto start = std::chrono::steady_clock::now();
+  for (std::int64_t k = 0; k < ticks && k <= stop_after; ++k) {
+    if constexpr (Sink::kActive) {
+      if (sink != nullptr && sink->stop_requested()) {
+        out.interrupted = true;
+        break;
+      }
+    }
+    if (stop_signal_received() != 0) {
+      out.interrupted = true;
+      link.stop_signal = stop_signal_received();
+      break;
+    }
+    const bool handshake = k == 0;
+    std::int64_t tick_deadline = 0;
+    if (s.real_time && !handshake) {
+      tick_deadline = epoch + k * s.period_ns;
+      stats.lateness.add(hil::sleep_until(tick_deadline, s.spin_ns));
+    }
+    const std::int64_t t_start = hil::monotonic_ns();
+    stats.tick_started(t_start, s.period_ns);
+
+    device.sense(k, sensor);
+    published = sensor;
+    const bool dropped = t.sensor_drop.covers(k);
+    if (t.sensor_corrupt.covers(k)) {
+      published.carrier_angle_rad[msg::kRoll] = std::numeric_limits<double>::quiet_NaN();
+      ++ep.counters().corrupted_by_fault;
+    }
+    if (const std::int64_t d = jitter.next(); d > 0) hil::spin_for(d);
+    const std::int64_t sim_us = k * cfg.tick_ns / 1000;
+    if (dropped) {
+      ++ep.counters().dropped_by_fault;
+    } else {
+      ep.send(published, sim_us);
+    }
+
+    // The exchange: the command of tick k, or the watchdog's.
+    const std::int64_t t_sent = hil::monotonic_ns();
+    CommandWait w = CommandWait::kMissing;
+    if (link.peer_lost || (dropped && !s.real_time)) {
+      w = CommandWait::kMissing;  // lost: nobody answers; lockstep + withheld frame: nobody was asked
+    } else {
+      const bool lockstep = handshake || !s.real_time;
+      const auto window = static_cast<std::int64_t>(kPlantWindow * static_cast<double>(s.period_ns));
+      const std::int64_t deadline = lockstep ? hil::kNoDeadline : epoch + k * s.period_ns + window;
+      const std::int64_t lost_at =
+          (lockstep ? t_sent : last_heard) + (handshake ? s.start_timeout_ns : s.timeout_ns);
+      w = wait_for_command(ep, order, limits, k, deadline, lockstep, lost_at, s, command);
+    }
+    const std::int64_t t_got = hil::monotonic_ns();
+    if (w == CommandWait::kStopped) {
+      out.interrupted = true;
+      link.stop_signal = stop_signal_received();
+      break;
+    }
+    if (w == CommandWait::kError) {
+      link.transport_error = true;
+      break;
+    }
+    if (w == CommandWait::kAccepted) {
+      last_heard = t_got;
+      stats.round_trip.add(t_got - t_sent);
+    } else {
+      ++ep.counters().missed_frames;
+      if (w == CommandWait::kLost && !link.peer_lost) {
+        link.peer_lost = true;
+        link.lost_at_tick = k;
+        link.silent_ns = t_got - last_heard;
+        // Lockstep: run until the zero command has reached the plant through the latency pipe. Real time: the
+        // drives have been at zero since the first missed tick; stop now.
+        stop_after = s.real_time ? k : k + latency;
+        link.zero_torque_from_tick = k + latency;
+      }
+      command = hil::drive_watchdog_command(static_cast<std::uint64_t>(k));
+      ++link.watchdog_ticks;
+      if (link.first_watchdog_tick < 0) link.first_watchdog_tick = k;
+    }
+    if (handshake && s.real_time) epoch = t_got;  // tick 1 starts one period after the handshake
+
+    if constexpr (Sink::kActive) {
+      if (sink != nullptr && !sink->record(k, published, command)) {
+        out.interrupted = true;
+        break;
+      }
+    }
+    if (latency == 0) {
+      applied = command;
+    } else {
+      pipe[static_cast<std::size_t>((k + latency) % (kMaxLatencyTicks + 1))] = command;
+      if (k >= latency) applied = pipe[static_cast<std::size_t>(k % (kMaxLatencyTicks + 1))];
+    }
+    device.actuate(applied);
+    guard.remember(device);
+    device.advance(k);
+    out.ticks_run = k + 1;
+    if (!device.finite()) {
+      out.diverged = true;
+      out.diverged_tick = k;
+      out.diverged_state = guard.locate(device);
+      break;
+    }
+    if (recorder && recorder->due(k + 1)) {
+      if (double* row = recorder->row(static_cast<double>(k + 1) * cfg.tick_s())) device.record(row);
+    }
+    const std::int64_t t_end = hil::monotonic_ns();
+    stats.compute.add((t_end - t_start) - (t_got - t_sent));
+    if (s.real_time && !handshake && t_end > epoch + (k + 1) * s.period_ns) ++stats.overruns;
+  }
+  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+// Opens the transport the request names (LCM, or the test's in-memory bus), runs the loop, writes the
+// outputs. Exit code: 0 ok; 2 bad options; 3 diverged / outputs or log not written / transport failed;
+// 6 the controller was lost (receive timeout); 128 + N stopped by signal N.
+template <class Device, class Transport>
+int run_plant_over(Device& device, const LoopConfig& loop_in, const RunRequest& req, Transport& transport,
+                   const nlohmann::json& link_info, const hil::RtSetup* rt) {
+  // As in process (run_device.hpp, run_requested): --ticks sets the loop's length only; the recorder, the
+  // report's scene block and the outputs keep the scene's own configuration.
+  const LoopConfig& loop = loop_in;
+  LoopConfig run_loop = loop_in;
+  if (req.ticks >= 0) run_loop.duration_s = static_cast<double>(req.ticks) * run_loop.tick_s();
+  if (const std::string bad = Recorder::check_signals(Device::columns(), loop.signals); !bad.empty()) {
+    std::fprintf(stderr, "%s: [output] signals: %s\n", req.scene_path.c_str(), bad.c_str());
+    return 2;
+  }
+  Recorder rec(Device::columns(), loop.ticks(), loop.record_every, loop.signals);
+  const LinkSettings s = link_settings(run_loop, req.transport);
+  hil::FrameEndpoint<Transport> ep(transport);
+  auto stats = std::make_unique<LinkStats>();
+  PlantLinkOutcome link;
+  LoopOutcome outcome;
+  // --log FILE: the bus log (tools/run/bus_log_sink.hpp) as the loop's tick sink: it records the sensor frame
+  // the plant published and the command it used, per tick, as `gyrostab run --log` does in process.
+  const bool logging = !req.transport.log_path.empty();
+  buslog::BusLogWriter writer;
+  std::string log_error;
+  if (logging) {
+    buslog::SceneEvent scene;
+    if (!scene_event_of(loop, req, scene, log_error) ||
+        !writer.open(req.transport.log_path, scene, req.transport.channel_suffix, log_error)) {
+      std::fprintf(stderr, "gyrostab plant: %s\n", log_error.c_str());
+      return 3;
+    }
+  }
+  // Installed for the rest of the run: a stop request that comes while the outputs are written only sets the
+  // flag (the run is ending anyway), so it cannot kill the process half way through report.json.
+  StopSignalGuard stop_guard;
+  {
+    if (req.before_loop) req.before_loop();
+    if (logging) {
+      BusLogSink sink{&writer};
+      outcome = run_plant_loop(device, run_loop, req, s, ep, *stats, link, &rec, &sink);
+      if (outcome.interrupted && link.stop_signal == 0) link.stop_signal = stop_signal_received();
+    } else {
+      outcome = run_plant_loop(device, run_loop, req, s, ep, *stats, link, &rec);
+    }
+    if (req.after_loop) req.after_loop();
+  }
+  nlohmann::json log_summary;
+  if (logging) {
+    const bool write_failed = writer.failed();
+    buslog::EndEvent end = end_event_of(outcome, link.stop_signal);
+    if (link.peer_lost) {
+      end.reason = buslog::EndReason::kOther;
+      end.detail = "controller lost after tick " + std::to_string(link.lost_at_tick);
+    }
+    std::string close_error;
+    if (!writer.close(end, close_error)) log_error = close_error;
+    if (write_failed && log_error.empty()) log_error = "bus log " + req.transport.log_path + ": a write failed";
+    log_summary = {{"path", req.transport.log_path},
+                   {"events", writer.events_written()},
+                   {"ticks", outcome.ticks_run},
+                   {"complete", log_error.empty()},
+                   {"end", end.detail}};
+  }
+  nlohmann::json report{{"scene", scene_summary(loop, req.scene_path)},
+                        {"figures", device.figures()},
+                        {"timing", timing_summary(loop, outcome)}};
+  report["timing"].update(link_timing_json(*stats, s));
+  if constexpr (requires(const Device& d) { d.extra_timing(outcome); }) report["timing"].update(device.extra_timing(outcome));
+  if constexpr (requires(const Device& d) { d.report_extra(); }) report.update(device.report_extra());
+  const hil::ActuatorLimits limits = actuator_limits_of(device);
+  nlohmann::json l = link_info;
+  l["role"] = "plant";
+  l["counters"] = counters_json(ep.counters());
+  if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level (issue 7)
+  l["actuator_limits"] = limits.from_scene
+                             ? nlohmann::json{{"torque_Nm", {limits.torque_Nm[0], limits.torque_Nm[1]}},
+                                              {"voltage_V", {limits.voltage_V[0], limits.voltage_V[1]}},
+                                              {"brake", {0.0, 1.0}}}
+                             : nlohmann::json("finite values and brake in [0, 1] only (the device states no limits)");
+  l["drive_watchdog"] = {{"zero_torque_ticks", link.watchdog_ticks}, {"first_tick", link.first_watchdog_tick}};
+  std::string happened = "completed";
+  if (link.peer_lost) {
+    happened = "controller lost: no actuator frame for tick " + std::to_string(link.lost_at_tick) + " within " +
+               std::to_string(link.silent_ns / 1'000'000) + " ms; drives at zero torque from tick " +
+               std::to_string(link.zero_torque_from_tick);
+    l["peer"] = {{"lost", true},
+                 {"lost_at_tick", link.lost_at_tick},
+                 {"silent_ms", static_cast<double>(link.silent_ns) * 1e-6},
+                 {"zero_torque_from_tick", link.zero_torque_from_tick},
+                 {"reaction_ticks", link.zero_torque_from_tick - link.lost_at_tick}};
+  } else if (link.transport_error) {
+    happened = "transport error";
+  } else if (link.stop_signal != 0) {
+    happened = std::string("stopped by ") + signal_name(link.stop_signal) + " after tick " +
+               std::to_string(outcome.ticks_run - 1);
+  } else if (outcome.diverged) {
+    happened = "the plant state became non-finite at tick " + std::to_string(outcome.diverged_tick);
+  }
+  l["what_happened"] = happened;
+  if (rt != nullptr) l["real_time_setup"] = {{"sched_fifo", rt->fifo}, {"priority", rt->priority},
+                                             {"mlockall", rt->memory_locked}, {"message", rt->message}};
+  report["link"] = l;
+  if (logging) report["log"] = log_summary;
+  std::string error;
+  if (!write_run_outputs(req, loop, rec, report, error)) {
+    std::fprintf(stderr, "gyrostab plant: %s\n", error.c_str());
+    return 3;
+  }
+  if (logging && !log_error.empty()) {
+    std::fprintf(stderr, "gyrostab plant: %s\n", log_error.c_str());
+    return 3;
+  }
+  if (link.peer_lost) {
+    std::fprintf(stderr, "gyrostab plant: %s: %s (receive timeout %lld ms); outputs up to it are written\n",
+                 loop.name.c_str(), happened.c_str(), static_cast<long long>(req.transport.timeout_ms));
+    return kExitPeerLost;
+  }
+  if (link.transport_error) {
+    std::fprintf(stderr, "gyrostab plant: %s: the transport failed after tick %lld\n", loop.name.c_str(),
+                 static_cast<long long>(outcome.ticks_run - 1));
+    return 3;
+  }
+  if (link.stop_signal != 0) {
+    std::fprintf(stderr, "gyrostab plant: %s: %s; outputs up to it are written\n", loop.name.c_str(), happened.c_str());
+    return 128 + link.stop_signal;
+  }
+  if (outcome.diverged) {
+    std::fprintf(stderr, "gyrostab plant: %s; outputs up to it are written\n",
+                 describe_non_finite(loop.name, outcome.diverged_tick, outcome.diverged_state).c_str());
+    return 3;
+  }
+  return 0;
+}
+
+// Opens the link of the request and runs the plant over it (run_device.hpp dispatches Role::kPlant here).
+template <class Device>
+int run_plant_process(Device& device, const LoopConfig& loop, const RunRequest& req) {
+  const TransportOptions& t = req.transport;
+  hil::RtSetup rt;
+  if (t.real_time) {
+    rt = hil::setup_real_time(t.rt_priority);
+    std::fprintf(stderr, "gyrostab plant: %s\n", rt.message.c_str());
+  }
+  if (!t.can_if.empty()) {  // CAN FD over SocketCAN (issue 7, tools/run/can_link_setup.hpp, docs/can.md)
+    auto bus = std::make_unique<can::CanBusTransport>();
+    nlohmann::json info;
+    if (const int rc = open_can_link(*bus, loop, req, /*plant_side=*/true, info); rc != 0) return rc;
+    return run_plant_over(device, loop, req, *bus, info, t.real_time ? &rt : nullptr);
+  }
+  if (t.memory_bus != nullptr) {
+    hil::MemoryTransport transport(t.memory_bus->to_controller, t.memory_bus->to_plant);
+    return run_plant_over(device, loop, req, transport, nlohmann::json{{"transport", "memory"}},
+                          t.real_time ? &rt : nullptr);
+  }
+  if (!hil::valid_channel_suffix(t.channel_suffix)) {
+    std::fprintf(stderr, "gyrostab plant: --channel-suffix '%s': only letters, digits, '_' and '-' (at most 40)\n",
+                 t.channel_suffix.c_str());
+    return 2;
+  }
+  auto transport = std::make_unique<hil::LcmTransport>();
+  std::string error;
+  if (!transport->open(actuator_url(t), sensor_channel(t), actuator_channel(t), hil::kLcmQueueCapacity, error,
+                       sensor_url(t))) {
+    std::fprintf(stderr, "gyrostab plant: %s\n", error.c_str());
+    return 3;
+  }
+  const nlohmann::json info{{"transport", "lcm"},
+                            {"url", t.lcm_url},
+                            {"publishes_on", sensor_url(t)},
+                            {"subscribes_on", actuator_url(t)},
+                            {"publishes", sensor_channel(t)},
+                            {"subscribes", actuator_channel(t)},
+                            {"queue_capacity", hil::kLcmQueueCapacity},
+                            {"timeout_ms", t.timeout_ms},
+                            {"start_timeout_ms", t.start_timeout_ms}};
+  return run_plant_over(device, loop, req, *transport, info, t.real_time ? &rt : nullptr);
 }
 
 }  // namespace gyrostab::tools

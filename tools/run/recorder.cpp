@@ -1,19 +1,50 @@
 #include "tools/run/recorder.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace gyrostab::tools {
 
-Recorder::Recorder(std::vector<std::string> columns, std::int64_t ticks, int every)
+Recorder::Recorder(std::vector<std::string> columns, std::int64_t ticks, int every,
+                   const std::vector<std::string>& selection)
     : every_(every < 1 ? 1 : every) {
   columns_.push_back("t_s");
-  for (auto& c : columns) columns_.push_back(std::move(c));
+  if (selection.empty()) {
+    for (auto& c : columns) columns_.push_back(std::move(c));
+  } else {
+    // Names were checked (check_signals); an unknown one here is skipped rather than recorded wrong.
+    for (const std::string& want : selection) {
+      const auto it = std::find(columns.begin(), columns.end(), want);
+      if (it == columns.end()) continue;
+      pick_.push_back(static_cast<std::size_t>(it - columns.begin()));
+      columns_.push_back(want);
+    }
+    scratch_.assign(columns.size(), 0.0);
+  }
   width_ = static_cast<std::int64_t>(columns_.size());
   capacity_ = ticks / every_ + 1;
   data_.assign(static_cast<std::size_t>(capacity_ * width_), 0.0);
 }
 
+std::string Recorder::check_signals(const std::vector<std::string>& columns, const std::vector<std::string>& wanted) {
+  std::string problems;
+  for (std::size_t i = 0; i < wanted.size(); ++i) {
+    const std::string& w = wanted[i];
+    if (std::find(columns.begin(), columns.end(), w) == columns.end()) {
+      problems += (problems.empty() ? "" : "; ") + ("\"" + w + "\" is not a signal of this device");
+    } else if (std::find(wanted.begin(), wanted.begin() + static_cast<std::ptrdiff_t>(i), w) !=
+               wanted.begin() + static_cast<std::ptrdiff_t>(i)) {
+      problems += (problems.empty() ? "" : "; ") + ("\"" + w + "\" is listed twice");
+    }
+  }
+  if (problems.empty()) return problems;
+  std::string valid;
+  for (const std::string& c : columns) valid += (valid.empty() ? "" : ", ") + c;
+  return problems + " (valid: " + valid + ")";
+}
+
 std::string Recorder::csv() const {
+  flush();
   std::string out;
   for (std::size_t c = 0; c < columns_.size(); ++c) out += (c ? "," : "") + columns_[c];
   out += '\n';

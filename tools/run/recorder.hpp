@@ -1,5 +1,8 @@
 // Records the main signals of a run into a table sized before the loop starts (no allocation per tick),
-// then writes it as CSV. Every `every`-th tick is one row: tick time plus the device's columns.
+// then writes it as CSV. Every `every`-th tick is one row: tick time plus the device's columns — all of
+// them, or only those the scene's `[output] signals` names (check_signals() refuses an unknown name with
+// the list of valid ones). With a selection the device still writes its full row (into a scratch row); the
+// table keeps the selected columns only, so memory and CSV size follow what the scene asks for.
 #pragma once
 
 #include <cstdint>
@@ -10,33 +13,57 @@ namespace gyrostab::tools {
 
 class Recorder {
  public:
-  Recorder(std::vector<std::string> columns, std::int64_t ticks, int every);
+  // `selection`: the column names to keep, in the CSV in this order; empty = every column.
+  Recorder(std::vector<std::string> columns, std::int64_t ticks, int every,
+           const std::vector<std::string>& selection = {});
+
+  // "" if every name in `wanted` is one of `columns` (and none is listed twice), else the message naming the
+  // offending name and the valid ones.
+  static std::string check_signals(const std::vector<std::string>& columns, const std::vector<std::string>& wanted);
 
   bool due(std::int64_t tick) const { return tick % every_ == 0; }
-  // Pointer to the next row's columns (after the time column); nullptr when the table is full.
+  // Pointer to the next row's columns (after the time column), all of the device's columns in order;
+  // nullptr when the table is full.
   double* row(double t) {
     if (rows_ >= capacity_) return nullptr;
+    flush();
     double* r = data_.data() + rows_ * width_;
     r[0] = t;
     ++rows_;
-    return r + 1;
+    if (pick_.empty()) return r + 1;
+    pending_ = true;
+    return scratch_.data();
   }
 
   std::size_t rows() const { return static_cast<std::size_t>(rows_); }
   std::size_t width() const { return static_cast<std::size_t>(width_); }
-  const std::vector<std::string>& columns() const { return columns_; }
-  double at(std::size_t row, std::size_t col) const { return data_[row * static_cast<std::size_t>(width_) + col]; }
+  const std::vector<std::string>& columns() const { return columns_; }  // recorded ones, "t_s" first
+  double at(std::size_t row, std::size_t col) const {
+    flush();
+    return data_[row * static_cast<std::size_t>(width_) + col];
+  }
 
   bool write_csv(const std::string& path, std::string& error) const;
   std::string csv() const;
 
  private:
+  // Moves the selected columns of the last scratch row into the table.
+  void flush() const {
+    if (!pending_) return;
+    double* r = data_.data() + (rows_ - 1) * width_ + 1;
+    for (std::size_t j = 0; j < pick_.size(); ++j) r[j] = scratch_[pick_[j]];
+    pending_ = false;
+  }
+
   std::vector<std::string> columns_;  // including "t_s"
   int every_;
   std::int64_t width_;
   std::int64_t capacity_;
   std::int64_t rows_{0};
-  std::vector<double> data_;
+  std::vector<std::size_t> pick_;   // device column index of each recorded column; empty: all
+  std::vector<double> scratch_;     // the device's full row when selecting
+  mutable std::vector<double> data_;
+  mutable bool pending_{false};
 };
 
 }  // namespace gyrostab::tools

@@ -25,6 +25,11 @@ nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& o) {
                    {"ticks_per_second", o.wall_s > 0 ? static_cast<double>(o.ticks_run) / o.wall_s : 0.0},
                    {"real_time_factor", o.wall_s > 0 ? static_cast<double>(o.ticks_run) * cfg.tick_s() / o.wall_s : 0.0}};
   if (o.diverged) t["diverged_at_tick"] = o.diverged_tick;
+  if (o.diverged && o.diverged_state.name != nullptr) {
+    t["diverged_state"] = {{"component", o.diverged_state.name},
+                           {"index", o.diverged_state.component},
+                           {"last_finite_value", o.diverged_state.last_finite}};
+  }
   return t;
 }
 

@@ -14,6 +14,8 @@ namespace gyrostab::tools {
 
 struct RunRequest {
   std::string scene_path;
+  std::string scene_text;  // the scene's TOML when not read from scene_path (replay: the log's scene event);
+                           // a logging run fills it from the file so the bus log holds exactly what ran
   std::string out_dir{"out"};
   Role role{Role::kInProcess};  // which part of the loop this process runs (run_role.hpp)
   TransportOptions transport;
@@ -33,11 +35,12 @@ nlohmann::json scene_summary(const LoopConfig& cfg, const std::string& scene_pat
 nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& outcome);
 
 // Runs the loop under the request's tick limit and hooks.
-template <class Device>
-LoopOutcome run_requested(Device& device, LoopConfig cfg, Recorder& rec, const RunRequest& req) {
+template <class Device, class Sink = NoTickSink>
+LoopOutcome run_requested(Device& device, LoopConfig cfg, Recorder& rec, const RunRequest& req,
+                          Sink* sink = nullptr) {
   if (req.ticks >= 0) cfg.duration_s = static_cast<double>(req.ticks) * cfg.tick_s();
   if (req.before_loop) req.before_loop();
-  const LoopOutcome o = run_closed_loop(device, cfg, &rec, req.progress);
+  const LoopOutcome o = run_closed_loop(device, cfg, &rec, req.progress, sink);
   if (req.after_loop) req.after_loop();
   return o;
 }

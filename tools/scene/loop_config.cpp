@@ -26,6 +26,7 @@ LoopConfig read_loop_config(SceneReader& r, const char* default_integrator,
   c.integrator = r.choice("loop", "integrator", default_integrator, integrators, "plant integrator");
   c.record_every = static_cast<int>(r.integer("output", "record_every", 10, 1, 1'000'000, "CSV row every N ticks"));
   c.plots = r.flag("output", "plots", true, "write PNG plots");
+  c.signals = r.strings("output", "signals", "CSV columns to record; default: all of the device's");
   return c;
 }
 

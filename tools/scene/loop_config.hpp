@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "tools/scene/scene_reader.hpp"
 
@@ -20,6 +21,7 @@ struct LoopConfig {
   std::string integrator;           // [loop] integrator (device default if empty)
   int record_every{10};             // [output] record_every: CSV row every N ticks
   bool plots{true};                 // [output] plots: PNG via /usr/bin/python3 + matplotlib
+  std::vector<std::string> signals;  // [output] signals: the CSV columns to record; empty = all the device's
 
   std::int64_t ticks() const;
   double tick_s() const { return 1e-9 * static_cast<double>(tick_ns); }

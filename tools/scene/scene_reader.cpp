@@ -207,6 +207,27 @@ std::string SceneReader::text(std::string_view section, std::string_view key, st
   return n->as_string()->get();
 }
 
+std::vector<std::string> SceneReader::strings(std::string_view section, std::string_view key, std::string_view what) {
+  impl_->used.insert(std::string(section));
+  impl_->used.insert(std::string(section) + "." + std::string(key));
+  std::vector<std::string> out;
+  const toml::node* n = lookup(impl_->root, section, key);
+  if (!n) return out;
+  const toml::array* a = n->as_array();
+  if (a == nullptr) {
+    fail(section, key, "must be an array of strings (" + std::string(what) + ")");
+    return out;
+  }
+  for (const toml::node& e : *a) {
+    if (!e.is_string()) {
+      fail(section, key, "must be an array of strings (" + std::string(what) + ")");
+      return {};
+    }
+    out.push_back(e.as_string()->get());
+  }
+  return out;
+}
+
 std::string SceneReader::choice(std::string_view section, std::string_view key, std::string_view fallback,
                                 std::initializer_list<std::string_view> allowed, std::string_view what) {
   const std::string v = text(section, key, fallback, what);

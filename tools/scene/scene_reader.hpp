@@ -52,6 +52,8 @@ class SceneReader {
   std::string choice(std::string_view section, std::string_view key, std::string_view fallback,
                      std::initializer_list<std::string_view> allowed, std::string_view what);
   std::string text(std::string_view section, std::string_view key, std::string_view fallback, std::string_view what);
+  // An array of strings; empty when the key is absent (a non-array or a non-string element is a problem).
+  std::vector<std::string> strings(std::string_view section, std::string_view key, std::string_view what);
 
   // A problem found by the caller (e.g. a relation between keys); `key` is used for the line number.
   void fail(std::string_view section, std::string_view key, const std::string& message);

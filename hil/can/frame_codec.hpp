@@ -1,0 +1,163 @@
+// Encoder and decoder between the interface contract (msg::SensorFrame, msg::ActuatorFrame) and the CAN FD
+// frames of hil/can/frame_map.hpp.
+//
+// FrameEncoder: one contract frame → the frames of its direction that the device's nodes send, header last,
+// each with its envelope (CRC-8, alive counter, tick tag). Refuses (returns 0) a contract frame with a non-zero
+// field of a node the device does not have: that value could not travel, and lockstep over CAN would silently
+// stop being bit-identical to in-process.
+//
+// SetAssembler: received frames → complete contract frames, one per tick. Each frame is checked in this order
+// and rejected with the first failing check (FrameError), counted per cause in RxCounters:
+//   error frame, remote frame, 29-bit id, unknown id, other direction, absent node, classic instead of FD,
+//   wrong length, CRC, reserved bits / padding not zero, alive counter repeated (stale) or skipped (frames lost:
+//   the counter then resynchronises on this frame, so one loss rejects one frame), header tick ≠ tick tag,
+//   late (a tick the receiver has already stepped past).
+// A tick's set completes when every frame of the direction's message mask has arrived with the same tick tag;
+// frames of a newer tick abandon an incomplete set (counted). What the receiver does with a tick that has no
+// complete set — step the firmware with no sensor frame (fault monitor: hold, then safe state), or hold the
+// last command at a drive — is the loop's business (docs/can.md).
+// Accepted values are passed on bit for bit; non-finite doubles and values outside the map's range are only
+// counted here, because the firmware's fault monitor must make the same decision as it does in-process.
+//
+// Resources: fixed-size members, no heap, no exceptions, no I/O (firmware-grade; also the fuzz target's
+// surface, tests/fuzz/can_decoder_fuzz.cpp). accept() is O(frame length + signals of the message).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include "firmware/msg/actuator_frame.hpp"
+#include "firmware/msg/sensor_frame.hpp"
+#include "hil/can/can_frame.hpp"
+#include "hil/can/frame_map.hpp"
+
+namespace gyrostab::can {
+
+enum class FrameError : std::uint8_t {
+  kNone,
+  kErrorFrame,       // an error frame reported by the CAN controller
+  kRemote,           // a remote (RTR) frame: this bus never uses them
+  kExtendedId,       // a 29-bit identifier: this bus uses 11-bit ones
+  kUnknownId,        // an identifier not in the frame map
+  kWrongDirection,   // a frame of the map this receiver does not take (e.g. a command at the controller)
+  kAbsentNode,       // a frame of a node this device does not have
+  kNotFd,            // a classic frame on an identifier of the map (all are CAN FD)
+  kWrongLength,      // a length other than the map's
+  kBadCrc,           // the CRC-8 does not match
+  kReservedBits,     // upper nibble of the alive byte or a padding byte not zero
+  kCounterRepeated,  // the alive counter did not advance: a stale (repeated) frame
+  kCounterSkipped,   // the alive counter jumped: frames were lost
+  kTickMismatch,     // the header's full tick disagrees with its tick tag
+  kLate,             // the frame's tick is before the one the receiver expects (already stepped)
+  kCount
+};
+inline constexpr std::size_t kFrameErrorCount = static_cast<std::size_t>(FrameError::kCount);
+std::string_view frame_error_name(FrameError e);
+
+struct RxCounters {
+  std::uint64_t frames{0};                                // frames offered to accept() [-]
+  std::uint64_t accepted{0};                              // frames that passed every check [-]
+  std::array<std::uint64_t, kFrameErrorCount> rejected{};  // rejected frames by cause (index = FrameError) [-]
+  std::uint64_t sets_completed{0};                        // ticks whose set completed [-]
+  std::uint64_t sets_abandoned{0};                        // incomplete sets dropped for a newer tick or a late header [-]
+  std::uint64_t non_finite_values{0};                     // accepted doubles that are NaN or ±Inf (passed on) [-]
+  std::uint64_t out_of_range_values{0};                   // accepted values outside the map's range (passed on) [-]
+  FrameError last_error{FrameError::kNone};               // the latest rejection's cause
+  std::uint32_t last_error_id{0};                         // and its identifier
+
+  std::uint64_t rejected_total() const {
+    std::uint64_t n = 0;
+    for (std::uint64_t r : rejected) n += r;
+    return n;
+  }
+  std::uint64_t count(FrameError e) const { return rejected[static_cast<std::size_t>(e)]; }
+};
+
+// Where a contract frame had a value the device's nodes cannot carry.
+struct FieldViolation {
+  std::string_view message;  // the absent node's message
+  std::string_view signal;   // the non-zero field
+};
+
+class FrameEncoder {
+ public:
+  FrameEncoder(Direction direction, NodeSet nodes);
+
+  // The frames of one sensor (kSensor) or actuator (kActuator) frame into out (capacity ≥ frames_per_set()),
+  // header last. Returns the number written, or 0 (and *violation) when a field of an absent node is not zero.
+  std::size_t encode(const msg::SensorFrame& f, std::span<CanFrame> out, FieldViolation* violation = nullptr);
+  std::size_t encode(const msg::ActuatorFrame& f, std::span<CanFrame> out, FieldViolation* violation = nullptr);
+
+  std::size_t frames_per_set() const { return count_; }
+  Direction direction() const { return direction_; }
+
+ private:
+  std::size_t encode_bytes(const std::uint8_t* contract, std::span<CanFrame> out, FieldViolation* violation);
+
+  Direction direction_;
+  NodeSet nodes_;
+  std::size_t count_{0};
+  std::array<std::uint8_t, kMessageCount> alive_{};
+};
+
+class SetAssembler {
+ public:
+  SetAssembler(Direction direction, NodeSet nodes);
+
+  // Check one received frame and add it to its tick's set. kNone: accepted (ready() may now be true).
+  FrameError accept(const CanFrame& f);
+
+  // A completed set waits here until taken; a later completion replaces it (the loop takes each at once).
+  bool ready() const { return ready_; }
+  std::uint64_t ready_tick() const { return ready_tick_; }
+  // Copy the completed set out and clear ready(); the receiver then expects ready_tick() + 1. The overload
+  // must match the direction (sensor sets for kSensor); false when nothing is ready or it does not.
+  bool take(msg::SensorFrame& out);
+  bool take(msg::ActuatorFrame& out);
+
+  // The loop stepped tick `tick` without a set (timeout): frames of ticks before `tick + 1` are late from now.
+  void skip_through(std::uint64_t tick);
+  std::uint64_t expected_tick() const { return expected_; }
+
+  const RxCounters& counters() const { return counters_; }
+  std::uint32_t message_mask() const { return mask_; }
+
+ private:
+  FrameError check(const CanFrame& f, int& index);
+  FrameError reject(FrameError e, std::uint32_t id);
+  void abandon();
+  void count_values(const MessageSpec& m, const CanFrame& f);
+  bool take_bytes(std::uint8_t* out, std::size_t size, Direction d);
+
+  Direction direction_;
+  NodeSet nodes_;
+  std::uint32_t mask_;
+  std::size_t contract_size_;
+  std::uint64_t expected_{0};
+  std::array<std::uint8_t, kMessageCount> last_alive_{};
+  std::array<bool, kMessageCount> alive_seen_{};
+  // Set under construction.
+  bool building_{false};
+  std::uint16_t building_tag_{0};
+  std::uint32_t have_{0};
+  std::uint64_t building_tick_{0};  // valid once the header is in (have_ has the header's bit)
+  alignas(8) std::array<std::uint8_t, sizeof(msg::SensorFrame)> building_bytes_{};
+  // Completed set.
+  bool ready_{false};
+  std::uint64_t ready_tick_{0};
+  alignas(8) std::array<std::uint8_t, sizeof(msg::SensorFrame)> ready_bytes_{};
+  RxCounters counters_{};
+};
+
+// CRC-8 of a frame as the envelope defines it (identifier low byte, high byte, then data[1..len-1]).
+std::uint8_t frame_crc(std::uint32_t id, const std::uint8_t* data, std::size_t len);
+
+// The number of payload bytes a message's signals use (the rest up to its length is zero padding).
+std::size_t used_bytes(const MessageSpec& m);
+
+static_assert(sizeof(msg::SensorFrame) >= sizeof(msg::ActuatorFrame));
+
+}  // namespace gyrostab::can

@@ -1,0 +1,134 @@
+#include "hil/lcm/log_event_codec.hpp"
+
+#include <exception>
+
+#include <gyrostab_msg/log_end_t.hpp>
+#include <gyrostab_msg/scene_t.hpp>
+
+namespace gyrostab::hil {
+
+std::uint64_t fnv1a64(std::string_view text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const char c : text) {
+    h ^= static_cast<std::uint8_t>(c);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+namespace {
+
+constexpr std::size_t kCheckBytes = 8;  // check_fnv1a64, the last field of both types
+
+std::uint64_t check_of(const std::uint8_t* data, std::size_t size) {
+  return fnv1a64(std::string_view(reinterpret_cast<const char*>(data), size - kCheckBytes));
+}
+
+// Encodes with check_fnv1a64 = 0, then writes the check sum of the bytes before it into its place (LCM puts
+// an int64 big-endian, and it is the last field, so it is the last 8 bytes).
+template <class Msg>
+std::vector<std::uint8_t> encode_message(Msg& m) {
+  m.check_fnv1a64 = 0;
+  std::vector<std::uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
+  const int n = m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+  if (n < static_cast<int>(kCheckBytes)) return {};
+  buf.resize(static_cast<std::size_t>(n));
+  const std::uint64_t c = check_of(buf.data(), buf.size());
+  for (std::size_t i = 0; i < kCheckBytes; ++i) {
+    buf[buf.size() - kCheckBytes + i] = static_cast<std::uint8_t>(c >> (56 - 8 * i));
+  }
+  return buf;
+}
+
+// lcm-gen's decoder trusts a string's length field far enough to throw std::length_error on a zero or
+// negative one; a corrupt log must be refused, not thrown through the replay.
+template <class Msg>
+bool decode_message(const void* data, int size, Msg& m, std::string& why) {
+  int n = -1;
+  try {
+    n = m.decode(data, 0, size);
+  } catch (const std::exception&) {
+    n = -1;
+  }
+  if (n < 0) {
+    why = "not a valid " + std::string(Msg::getTypeName()) + " (wrong type fingerprint or a length field "
+          "beyond the event)";
+    return false;
+  }
+  if (n != size) {
+    why = std::string(Msg::getTypeName()) + " decodes from " + std::to_string(n) + " of the event's " +
+          std::to_string(size) + " bytes";
+    return false;
+  }
+  if (static_cast<std::uint64_t>(m.check_fnv1a64) !=
+      check_of(static_cast<const std::uint8_t*>(data), static_cast<std::size_t>(size))) {
+    why = std::string(Msg::getTypeName()) + " does not match its check sum (a corrupt byte)";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode(const SceneEvent& e) {
+  gyrostab_msg::scene_t m;
+  m.log_version = e.log_version;
+  m.name = e.name;
+  m.device = e.device;
+  m.seed = static_cast<std::int64_t>(e.seed);
+  m.tick_ns = e.tick_ns;
+  m.source = e.source;
+  m.toml = e.toml;
+  return encode_message(m);
+}
+
+std::vector<std::uint8_t> encode(const EndEvent& e) {
+  gyrostab_msg::log_end_t m;
+  m.ticks = e.ticks;
+  m.reason = static_cast<std::int32_t>(e.reason);
+  m.signal = e.signal;
+  m.detail = e.detail;
+  return encode_message(m);
+}
+
+bool decode(const void* data, int size, SceneEvent& out, std::string& why) {
+  gyrostab_msg::scene_t m;
+  if (!decode_message(data, size, m, why)) return false;
+  if (m.log_version != kLogVersion) {
+    why = "log version " + std::to_string(m.log_version) + " (this build reads version " +
+          std::to_string(kLogVersion) + ")";
+    return false;
+  }
+  if (m.tick_ns < 1000) {
+    why = "tick_ns " + std::to_string(m.tick_ns) + " (every scene ticks at 1 us or slower)";
+    return false;
+  }
+  out.log_version = m.log_version;
+  out.name = m.name;
+  out.device = m.device;
+  out.seed = static_cast<std::uint64_t>(m.seed);
+  out.tick_ns = m.tick_ns;
+  out.source = m.source;
+  out.toml = m.toml;
+  return true;
+}
+
+bool decode(const void* data, int size, EndEvent& out, std::string& why) {
+  gyrostab_msg::log_end_t m;
+  if (!decode_message(data, size, m, why)) return false;
+  if (m.reason < 0 || m.reason > static_cast<std::int32_t>(EndReason::kOther)) {
+    why = "unknown end reason " + std::to_string(m.reason);
+    return false;
+  }
+  if (m.ticks < 0) {
+    why = "negative tick count " + std::to_string(m.ticks);
+    return false;
+  }
+  out.ticks = m.ticks;
+  out.reason = static_cast<EndReason>(m.reason);
+  out.signal = m.signal;
+  out.detail = m.detail;
+  return true;
+}
+
+}  // namespace gyrostab::hil

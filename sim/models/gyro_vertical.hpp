@@ -1,0 +1,157 @@
+// Gyro vertical (gyro horizon) on a moving vehicle: a rotor with its axis near the vertical in a two-gimbal
+// suspension, erected by a pendulous torque and by the torquers of a correction law (the firmware,
+// firmware/control/gyro_vertical_correction.hpp), in the frame that turns with the vehicle's track.
+//
+// Book: Magnus §12.3 (digest gyro-devices.md §1.3): the torque table (12.35), errors in accelerated flight
+// (12.36)-(12.42) and in a level turn (12.43)-(12.51); built on the master equation (10.22) (§0.2,
+// sim/models/gyro_in_rotating_frame.hpp).
+// Frame (the book's "123" vertical): axis 1 forward along the track, axis 2 to the right, axis 3 down (the
+// rotor axis); α = roll-plane tilt of the rotor axis (about axis 1), β = pitch-plane tilt (about axis 2),
+// both relative to the geocentric vertical of the frame. A right turn at rate ω has Ω3 = +ω (the book's
+// "ω > 0 right turn" of (12.43)). Frame rates come from the vehicle generator's track trihedron
+// T = (forward, left, up) as Ω = (Ω_T1, −Ω_T2, −Ω_T3), and likewise f.
+// Apparent vertical (the plumb line of the specific force f = a_abs − g_grav, frame axes):
+//   α_L = atan2(f2, −f3),  β_L = atan2(−f1, −f3)       (small: (12.43) α_L ≈ vω/g; (12.36) tanβ_L = −b/g)
+// Torques (M1 about axis 1, M2 about axis 2), the rows of (12.35) that are physics of the instrument:
+//   row 1, pendulous rotor case (CoM below the pivot):  −c (α − α_L),      −c (β − β_L)
+//   row 2, viscous bearing friction:                     −d1 α',            −d2 β'
+//   row 3, Coulomb bearing friction (regularized):       −r1 sat(α'/ε),     −r2 sat(β'/ε)
+//   + the torquer commands M1, M2 of the correction law (all five rows, firmware).
+// Full form: (10.22) with these torques. Precession form (A = B = 0, the book's (12.35)-(12.51)): the rates
+// from gyro_frame_precession_rates (viscous rows solved exactly); Coulomb friction is refused there (the
+// reduced form cannot resolve sticking — use the full form).
+// [derived] Nutation hidden by the precession theory (digest §8): rows 4-5 are circulatory forces. For
+// A = B, z = α + iβ, the full form is A z'' + (d − iH) z' + (Hω + c − i f) z = 0 (d = d1 = d2); its roots sum
+// to (−d + iH)/A, so with the precession root's real part −δ (δ = f/H) the nutation root has real part
+// ≈ δ − d/A: without bearing damping the nutation GROWS at the correction rate δ. The instrument needs
+// d/A > δ (tests/oracle/gyro_vertical_test.cpp); d shifts the precession decay by d(Hω + c)/(fH) relative.
+// The erection sensor (liquid level on the rotor case) reads the tilt from the apparent vertical,
+// e = (α − α_L, β − β_L): what the pendulous torque and every correction law act on ((12.37), (12.44)).
+//
+// State x = [α (rad), β (rad), α' (rad/s), β' (rad/s)] — relative to the frame. Precession form: x[2], x[3]
+// are unused (kept 0); rates() computes the rates.
+// Parameters (SI): GyroFrameParams A, B [kg m²], H [N m s]; c pendulous moment m g s [N m/rad]; d1, d2
+// [N m s/rad]; r1, r2 [N m]; ε = coulomb_rate [rad/s] (below it the Coulomb torque is linear — a rate
+// resolution, documented, not a physical viscous friction).
+// Inputs: FrameInputs (Ω, Ω', f over the step), torquer commands M1, M2 [N m] (zero-order hold).
+// Assumptions: the book's — small angles, constant H, c constant (the load-factor change of the pendulous
+// torque in a banked turn is neglected, as in (12.44)); the gimbal (kinematic) error of §1.1 is not modelled.
+// Oracle: tests/oracle/gyro_vertical_test.cpp — steady-turn equilibrium z_G (12.47), resonance at ω = −ω^P,
+// the δ = 0 and astatic limits (12.48)-(12.49), the deceleration response (12.41)-(12.42), linear-correction
+// decay (corrected pairing, see firmware/control/gyro_vertical_correction.hpp), full vs precession form.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "sim/models/gyro_in_rotating_frame.hpp"
+
+namespace gyrostab::models {
+
+enum class InstrumentFidelity {
+  kFull,        // (10.22) with nutation
+  kPrecession,  // A = B = 0
+};
+
+struct GyroVerticalParams {
+  GyroFrameParams gyro{2e-3, 2e-3, 0.5};
+  double c{2.5e-3};           // pendulous moment m g s, row 1 [N m/rad]
+  double d1{0.0}, d2{0.0};    // viscous bearing friction, row 2 [N m s/rad]
+  double r1{0.0}, r2{0.0};    // Coulomb bearing friction, row 3 [N m]
+  double coulomb_rate{1e-4};  // ε of sat(α'/ε) [rad/s]
+  InstrumentFidelity fidelity{InstrumentFidelity::kFull};
+
+  // nullptr if usable, else why not (scene validation).
+  const char* invalid_reason() const {
+    const auto fin = [](double v) { return std::isfinite(v); };
+    if (!(fin(gyro.H) && gyro.H > 0.0)) return "H must be finite and > 0";
+    if (fidelity == InstrumentFidelity::kFull && !(fin(gyro.A) && gyro.A > 0.0 && fin(gyro.B) && gyro.B > 0.0))
+      return "A, B must be finite and > 0 for the full form";
+    if (!(fin(c) && c >= 0.0)) return "c (pendulous moment) must be finite and >= 0";
+    if (!(fin(d1) && d1 >= 0.0 && fin(d2) && d2 >= 0.0)) return "d1, d2 must be finite and >= 0";
+    if (!(fin(r1) && r1 >= 0.0 && fin(r2) && r2 >= 0.0)) return "r1, r2 must be finite and >= 0";
+    if (!(fin(coulomb_rate) && coulomb_rate > 0.0)) return "coulomb_rate must be finite and > 0";
+    if (fidelity == InstrumentFidelity::kPrecession && (r1 > 0.0 || r2 > 0.0))
+      return "Coulomb friction (r1, r2) needs the full form: the precession form cannot resolve sticking";
+    return nullptr;
+  }
+};
+
+struct GyroVerticalInputs {
+  FrameInputs frame{};  // frame motion over the step (book axes: forward, right, down)
+  double M1{0.0};       // torquer command about axis 1 [N m]
+  double M2{0.0};       // torquer command about axis 2 [N m]
+};
+
+// Apparent-vertical angles (α_L, β_L) of the specific force f in book axes (forward, right, down) [rad].
+struct ApparentVertical {
+  double alpha_L{0.0};
+  double beta_L{0.0};
+};
+inline ApparentVertical apparent_vertical(const dynamics::Vec3& f) {
+  return {std::atan2(f.y(), -f.z()), std::atan2(-f.x(), -f.z())};
+}
+
+class GyroVertical {
+ public:
+  static constexpr int kStateSize = 4;
+  using State = Eigen::Matrix<double, 4, 1>;
+
+  explicit GyroVertical(const GyroVerticalParams& p = {}) : p_(p) {}
+
+  GyroVerticalInputs inputs{};  // held between steps
+
+  const GyroVerticalParams& params() const { return p_; }
+
+  static State make_state(double alpha, double beta, double alpha_rate = 0.0, double beta_rate = 0.0) {
+    State x;
+    x << alpha, beta, alpha_rate, beta_rate;
+    return x;
+  }
+
+  void derivative(double t, const State& x, State& dx) const {
+    const FrameSample w = inputs.frame.at(t);
+    const ApparentVertical L = apparent_vertical(w.f);
+    const double M1s = -p_.c * (x[0] - L.alpha_L) + inputs.M1;
+    const double M2s = -p_.c * (x[1] - L.beta_L) + inputs.M2;
+    if (p_.fidelity == InstrumentFidelity::kPrecession) {
+      gyro_frame_precession_rates(p_.gyro, w, x[0], x[1], M1s, M2s, p_.d1, p_.d2, dx[0], dx[1]);
+      dx[2] = 0.0;
+      dx[3] = 0.0;
+      return;
+    }
+    const double M1 = M1s - p_.d1 * x[2] - p_.r1 * sat(x[2] / p_.coulomb_rate);
+    const double M2 = M2s - p_.d2 * x[3] - p_.r2 * sat(x[3] / p_.coulomb_rate);
+    dx[0] = x[2];
+    dx[1] = x[3];
+    gyro_frame_accelerations(p_.gyro, w, x[0], x[1], x[2], x[3], M1, M2, dx[2], dx[3]);
+  }
+  void project(State&) const {}
+
+  // (α', β') at time t [rad/s]: the state's (full) or the precession solution's.
+  void rates(double t, const State& x, double& alpha_rate, double& beta_rate) const {
+    if (p_.fidelity == InstrumentFidelity::kFull) {
+      alpha_rate = x[2];
+      beta_rate = x[3];
+      return;
+    }
+    State dx;
+    derivative(t, x, dx);
+    alpha_rate = dx[0];
+    beta_rate = dx[1];
+  }
+
+  // The erection sensor: tilt of the rotor axis from the apparent vertical (α − α_L, β − β_L) [rad].
+  void erection_signal(double t, const State& x, double& e1, double& e2) const {
+    const ApparentVertical L = apparent_vertical(inputs.frame.at(t).f);
+    e1 = x[0] - L.alpha_L;
+    e2 = x[1] - L.beta_L;
+  }
+
+ private:
+  static double sat(double v) { return std::clamp(v, -1.0, 1.0); }
+
+  GyroVerticalParams p_;
+};
+
+}  // namespace gyrostab::models

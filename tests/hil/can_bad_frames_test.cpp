@@ -1,0 +1,244 @@
+// Bad frames on the bus reach the firmware as "no sensor frame this tick" and nothing else: a controller
+// process (`gyrostab controller --can-if`) is driven by this test acting as the plant over vcan. After good
+// ticks 0..K-1, from tick K on one frame of every sensor set is bad in one way — wrong length, unknown id,
+// bad CRC, stale (repeated) alive counter, skipped alive counter — or the bus falls silent. Each bad frame
+// is rejected and counted under its cause in the controller's report; the controller steps tick K without a
+// frame when its receive timeout expires (lockstep: the plant is lost), holds the last good frame for
+// hold_ticks = 1 tick and is in the safe state at tick K + 1 — the stated reaction (fault_monitor.hpp: the
+// safe state starts at the (hold_ticks + 1)-th consecutive bad tick) — and exits 6.
+// And a cangen flood on the same bus (random ids, and classic frames on one of our ids) does not stall a
+// lockstep run: it completes bit-identical to in-process, the flood's frames on our id counted as rejected.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <time.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <optional>
+
+#include "firmware/msg/fault_bits.hpp"
+#include "hil/can/frame_codec.hpp"
+#include "hil/can/socketcan_link.hpp"
+#include "tests/hil/hil_test_support.hpp"
+#include "tools/run/can_link_setup.hpp"
+
+namespace gyrostab::testing {
+namespace {
+
+using can::CanFrame;
+
+std::int64_t mono_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+enum class Bad { kWrongLength, kUnknownId, kBadCrc, kStaleCounter, kSkippedCounter, kSilent };
+
+const char* name_of(Bad b) {
+  switch (b) {
+    case Bad::kWrongLength: return "wrong length";
+    case Bad::kUnknownId: return "unknown identifier";
+    case Bad::kBadCrc: return "bad CRC";
+    case Bad::kStaleCounter: return "alive counter repeated (stale frame)";
+    case Bad::kSkippedCounter: return "alive counter skipped (frames lost)";
+    case Bad::kSilent: return "bus silent";
+  }
+  return "?";
+}
+
+// The test's plant: synthetic sensor sets of a ship roll damper (imu + drive2) over SocketCAN.
+class FakePlant {
+ public:
+  static constexpr can::NodeSet kNodes = can::kNodeImu | can::kNodeDrive2;
+  FakePlant() {
+    can::SocketCanConfig c;
+    c.ifname = can_if();
+    for (const can::MessageSpec& m : can::kMessages)
+      if (m.direction == can::Direction::kActuator && can::message_present(m, kNodes)) c.receive_ids.push_back(m.id);
+    std::string error;
+    EXPECT_TRUE(socket_.open(c, error)) << error;
+  }
+
+  static msg::SensorFrame frame(std::uint64_t k) {
+    msg::SensorFrame f{};
+    f.tick = k;
+    f.time_ns = static_cast<std::int64_t>(k) * 1'000'000;
+    f.sample_time_ns = f.time_ns;
+    f.sequence = static_cast<std::uint32_t>(k);
+    f.carrier_angle_rad[msg::kRoll] = 0.01 * std::sin(0.01 * static_cast<double>(k));
+    f.carrier_rate_rad_s[msg::kRoll] = 1e-4 * std::cos(0.01 * static_cast<double>(k));
+    return f;
+  }
+
+  // Sends the set of tick k, with the DRIVE2_FB frame made bad as `bad` says (kSilent: nothing). Returns the
+  // number of bad frames put on the bus.
+  int send(std::uint64_t k, std::optional<Bad> bad) {
+    if (bad == Bad::kSilent) return 0;
+    std::array<CanFrame, can::kMaxMessagesPerDirection> frames{};
+    const std::size_t n = enc_.encode(frame(k), frames);
+    int bad_frames = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      CanFrame f = frames[i];
+      if (f.id == 0x182) {
+        if (bad) {
+          corrupt(f, *bad);
+          ++bad_frames;
+        } else {
+          last_good_alive_ = f.data[can::kAliveByte];
+        }
+      }
+      EXPECT_TRUE(socket_.send(f, mono_ns() + 1'000'000'000));
+    }
+    return bad_frames;
+  }
+
+  // Waits for the controller's command set (any tick) until the deadline.
+  bool receive(msg::ActuatorFrame& out, std::int64_t deadline) {
+    for (;;) {
+      CanFrame f;
+      if (socket_.receive(f, deadline) != can::CanRx::kFrame) return false;
+      if (rx_.accept(f) == can::FrameError::kNone && rx_.ready()) return rx_.take(out);
+    }
+  }
+
+ private:
+  void corrupt(CanFrame& f, Bad bad) {
+    switch (bad) {
+      case Bad::kWrongLength:
+        f.len = 24;  // an FD length, not DRIVE2_FB's 32
+        break;
+      case Bad::kUnknownId:
+        f.id = 0x555;
+        break;
+      case Bad::kBadCrc:
+        f.data[10] ^= 0x10;
+        return;  // keep the now wrong CRC
+      case Bad::kStaleCounter:
+        f.data[can::kAliveByte] = last_good_alive_;  // the counter of the last accepted DRIVE2_FB again
+        break;
+      case Bad::kSkippedCounter:
+        skip_alive_ = static_cast<std::uint8_t>(((skip_started_ ? skip_alive_ : last_good_alive_) + 2u) & 0xFu);
+        skip_started_ = true;
+        f.data[can::kAliveByte] = skip_alive_;  // two ahead of the last one the controller saw, every time
+        break;
+      case Bad::kSilent:
+        break;
+    }
+    f.data[can::kCrcByte] = can::frame_crc(f.id, f.data, f.len);
+  }
+
+  can::SocketCan socket_;
+  can::FrameEncoder enc_{can::Direction::kSensor, kNodes};
+  can::SetAssembler rx_{can::Direction::kActuator, kNodes};
+  std::uint8_t last_good_alive_{0};
+  std::uint8_t skip_alive_{0};
+  bool skip_started_{false};
+};
+
+constexpr std::uint64_t kGoodTicks = 20;
+
+void run_case(Bad bad) {
+  SCOPED_TRACE(name_of(bad));
+  TempDir d;
+  const pid_t controller =
+      spawn({gyrostab_bin(), "controller", scene("ship-roll-damper-active.toml"), "--can-if", can_if(),
+             "--can-no-filter", "--ticks", "1000", "--timeout-ms", "300", "--out", d / "controller"});
+  FakePlant plant;
+  msg::ActuatorFrame a{};
+  // Good ticks; tick 0 is resent until the controller is up and answers.
+  for (std::uint64_t k = 0; k < kGoodTicks; ++k) {
+    bool got = false;
+    for (int attempt = 0; attempt < 500 && !got; ++attempt) {
+      plant.send(k, std::nullopt);
+      got = plant.receive(a, mono_ns() + (k == 0 ? 20'000'000 : 2'000'000'000)) && a.tick == k;
+    }
+    ASSERT_TRUE(got) << "no command for good tick " << k;
+    EXPECT_FALSE(msg::has(a.status, msg::FaultBit::kSafeState)) << "tick " << k;
+  }
+  // Tick K: bad from now on, resent every 20 ms as the plant does (each time bad again) for the first 150 ms of
+  // the controller's 300 ms receive timeout — so every bad frame is on the bus, and read, before it gives up.
+  const std::uint64_t K = kGoodTicks;
+  int bad_frames = 0;
+  std::vector<msg::ActuatorFrame> after;
+  const std::int64_t stop_sending = mono_ns() + 150'000'000;
+  const std::int64_t give_up = mono_ns() + 20'000'000'000;
+  while (after.size() < 2 && mono_ns() < give_up) {
+    if (mono_ns() < stop_sending) bad_frames += plant.send(K, bad);
+    msg::ActuatorFrame f{};
+    while (plant.receive(f, mono_ns() + 20'000'000)) after.push_back(f);
+  }
+  const Exit e = wait_for(controller);
+  EXPECT_EQ(e.code, 6) << "the controller declares the plant lost";
+  ASSERT_GE(after.size(), 2u);
+  // Tick K: held (the last good frame drives the law), cause "missing" — the bad frames never surfaced.
+  EXPECT_EQ(after[0].tick, K);
+  EXPECT_TRUE(msg::has(after[0].status, msg::FaultBit::kHoldingLastGood));
+  EXPECT_TRUE(msg::has(after[0].status, msg::FaultBit::kSensorMissing));
+  EXPECT_FALSE(msg::has(after[0].status, msg::FaultBit::kSafeState));
+  // Tick K + 1 (hold_ticks = 1): the safe state, brake on, zero torque.
+  EXPECT_EQ(after[1].tick, K + 1);
+  EXPECT_TRUE(msg::has(after[1].status, msg::FaultBit::kSafeState));
+  EXPECT_EQ(after[1].gimbal_torque_Nm[msg::kAxis2], 0.0);
+  EXPECT_EQ(after[1].precession_brake, 1.0);
+
+  const nlohmann::json r = read_json(d / "controller/report.json");
+  ASSERT_TRUE(r.contains("link")) << "no controller report";
+  EXPECT_EQ(r["link"]["safe_state_tick"], K + 1);
+  EXPECT_EQ(r["link"]["missing_ticks"], 2);
+  const nlohmann::json& rx = r["link"]["can"]["sensor_rx"];
+  EXPECT_EQ(r["link"]["counters"]["accepted"], kGoodTicks);
+  // Tick 0 may have completed more than once (the test resends it until the controller is up): at least K.
+  EXPECT_GE(rx["sets_completed"].get<int>(), static_cast<int>(kGoodTicks));
+  if (bad == Bad::kSilent) {
+    EXPECT_TRUE(rx["rejected"].empty()) << rx.dump();
+  } else {
+    EXPECT_GT(bad_frames, 0);
+    ASSERT_TRUE(rx["rejected"].contains(name_of(bad))) << rx.dump();
+    EXPECT_EQ(rx["rejected"][name_of(bad)], bad_frames) << rx.dump();
+    EXPECT_EQ(rx["rejected"].size(), 1u) << "only that cause: " << rx.dump();
+  }
+}
+
+TEST(CanBadFrames, WrongLength) { run_case(Bad::kWrongLength); }
+TEST(CanBadFrames, UnknownId) { run_case(Bad::kUnknownId); }
+TEST(CanBadFrames, BadCrc) { run_case(Bad::kBadCrc); }
+TEST(CanBadFrames, StaleCounter) { run_case(Bad::kStaleCounter); }
+TEST(CanBadFrames, SkippedCounter) { run_case(Bad::kSkippedCounter); }
+TEST(CanBadFrames, BusSilent) { run_case(Bad::kSilent); }
+
+TEST(CanFlood, CangenFloodDoesNotStallALockstepRun) {
+  TempDir d;
+  const std::string path = scene("ship-roll-damper-active.toml");
+  const std::vector<std::string> ticks{"--ticks", "400", "--no-progress"};
+  ASSERT_EQ(run(cat({gyrostab_bin(), "run", path, "--out", d / "inproc"}, ticks)).code, 0);
+  // Random identifiers at full speed (the kernel filters drop them), and classic frames on the sensor hub's
+  // identifier (they pass the filter and reach the decoder).
+  const pid_t random_flood = spawn({"/usr/bin/cangen", can_if(), "-g", "0", "-i"});
+  const pid_t our_id_flood = spawn({"/usr/bin/cangen", can_if(), "-g", "0", "-i", "-I", "1A0", "-L", "8"});
+  const Exit e = run(cat({gyrostab_bin(), "run", path, "--transport", "can", "--can-if", can_if(), "--out", d / "can"},
+                         ticks));
+  kill(random_flood, SIGTERM);
+  kill(our_id_flood, SIGTERM);
+  wait_for(random_flood);
+  wait_for(our_id_flood);
+  ASSERT_EQ(e.code, 0);
+  EXPECT_EQ(read_file(d / "inproc/signals.csv"), read_file(d / "can/signals.csv"));
+  const nlohmann::json r = read_json(d / "can/report.json");
+  const nlohmann::json& rx = r["controller_process"]["link"]["can"]["sensor_rx"];
+  // Every tick's set, plus at most the plant's lockstep resends (a start-up resend reaches the controller only
+  // if it was already listening).
+  EXPECT_GE(rx["sets_completed"].get<int>(), 400);
+  EXPECT_LE(rx["sets_completed"].get<int>(), 400 + r["link"]["counters"]["resent"].get<int>());
+  EXPECT_EQ(r["link"]["counters"]["accepted"], 400);
+  ASSERT_TRUE(rx["rejected"].contains("classic frame on a CAN FD identifier")) << rx.dump();
+  EXPECT_GT(rx["rejected"]["classic frame on a CAN FD identifier"].get<int>(), 0);
+  std::printf("[ measured ] flood: the controller rejected %d classic frames on 0x1A0 during 400 ticks\n",
+              rx["rejected"]["classic frame on a CAN FD identifier"].get<int>());
+}
+
+}  // namespace
+}  // namespace gyrostab::testing
+
+GYROSTAB_HIL_TEST_MAIN()

@@ -1,0 +1,168 @@
+// Bad messages on the bus are counted and rejected, never applied. A third process (this test) joins the bus
+// of a lockstep `run --transport lcm` and, following the genuine frames, publishes on both channels: wrong
+// sizes, wrong fingerprints, NaN and out-of-range commands, stale and repeated sequences, ticks far ahead.
+// Each kind must show up in the receiving side's counters, and the run must still be bit-identical to the
+// in-process run (nothing forged was applied).
+#include <gtest/gtest.h>
+#include <lcm/lcm.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "hil/lcm/frame_codec.hpp"
+#include "tests/lcm/lcm_test_support.hpp"
+
+namespace gyrostab::testing {
+namespace {
+
+constexpr const char* kSuffix = "_forged";
+const std::string kSensorChannel = std::string("GYROSTAB_SENSOR") + kSuffix;
+const std::string kActuatorChannel = std::string("GYROSTAB_ACTUATOR") + kSuffix;
+
+struct Forger {
+  lcm_t* lcm{nullptr};
+  std::int64_t last_sensor_tick{-1};  // the latest genuine sensor frame
+  std::int64_t last_copied_actuator{-1};
+  std::uint64_t forged{0};
+
+  template <class Frame>
+  void publish(const std::string& channel, const Frame& f, int size_delta = 0, bool bad_fingerprint = false) {
+    std::uint8_t buf[512] = {};
+    const int n = hil::encode(f, 0, buf, static_cast<int>(sizeof buf));
+    if (bad_fingerprint) buf[3] ^= 0x40;
+    lcm_publish(lcm, channel.c_str(), buf, static_cast<unsigned>(n + size_delta));
+    ++forged;
+  }
+
+  void on_sensor(const msg::SensorFrame& s) {
+    const auto k = static_cast<std::int64_t>(s.tick);
+    // Genuine ticks only go up (our own stale, repeated and far-ahead forgeries come back to us too).
+    if (last_sensor_tick >= 0 && (k <= last_sensor_tick || k > last_sensor_tick + 1000)) return;
+    last_sensor_tick = k;
+    if (k < 20) return;
+    if (k % 10 == 0) {
+      publish(kSensorChannel, s, +1);
+      publish(kSensorChannel, s, 0, true);
+      // Stale: five ticks old, well formed. Far ahead: beyond what the controller may skip.
+      msg::SensorFrame old = s;
+      old.tick -= 5;
+      old.sequence -= 5;
+      publish(kSensorChannel, old);
+      msg::SensorFrame ahead = s;
+      ahead.tick += 5000;
+      ahead.sequence += 5000;
+      publish(kSensorChannel, ahead);
+    }
+    if (k % 10 == 3) publish(kSensorChannel, s);  // an exact repeat of the frame just sent
+  }
+
+  // Forged commands follow the genuine one of the same tick: the plant's socket holds the genuine frame first
+  // (both left the controller's one sendmsg), so the forgeries reach a plant that has already taken tick k —
+  // they are rejected whatever the machine's load, and the run stays bit-identical. (A bad command that comes
+  // BEFORE the genuine one is the lockstep grace rule's case: tests/unit/lcm_link_test.cpp.)
+  void on_actuator(const msg::ActuatorFrame& a) {
+    const auto k = static_cast<std::int64_t>(a.tick);
+    if (k > last_sensor_tick || k <= last_copied_actuator ||
+        !std::isfinite(a.gimbal_torque_Nm[msg::kAxis2]) || a.precession_brake > 1.0 ||
+        std::fabs(a.gimbal_torque_Nm[msg::kAxis2]) > 2000.0) {
+      return;  // one of ours
+    }
+    if (k % 10 == 7) {
+      last_copied_actuator = k;
+      msg::ActuatorFrame bad = a;  // NaN torque, then a brake out of [0, 1], for the tick just taken
+      bad.gimbal_torque_Nm[msg::kAxis2] = std::numeric_limits<double>::quiet_NaN();
+      publish(kActuatorChannel, bad);
+      bad = a;
+      bad.precession_brake = 2.0;
+      publish(kActuatorChannel, bad);
+      bad = a;  // beyond the scene's torque limit (monorail: 2000 N m)
+      bad.gimbal_torque_Nm[msg::kAxis2] = 2000.5;
+      publish(kActuatorChannel, bad);
+      publish(kActuatorChannel, a, +1);  // wrong sizes, wrong fingerprint
+      publish(kActuatorChannel, a, -1);
+      publish(kActuatorChannel, a, 0, true);
+      return;
+    }
+    if (k % 10 != 3) return;
+    last_copied_actuator = k;
+    publish(kActuatorChannel, a);  // exact repeat of the command the plant just accepted
+    msg::ActuatorFrame old = a;    // stale: an older tick with a well-formed command
+    old.tick -= 2;
+    old.sequence -= 2;
+    publish(kActuatorChannel, old);
+    // Ahead: a later tick than the plant waits for — beyond the run, so that however late this copy arrives
+    // (a loaded machine) the plant is never waiting for exactly that tick when it does.
+    msg::ActuatorFrame ahead = a;
+    ahead.tick += 5000;
+    ahead.sequence += 5000;
+    publish(kActuatorChannel, ahead);
+  }
+};
+
+void on_message(const lcm_recv_buf_t* rbuf, const char* channel, void* user) {
+  auto* f = static_cast<Forger*>(user);
+  if (kSensorChannel == channel) {
+    msg::SensorFrame s{};
+    if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), s) == hil::DecodeError::kOk)
+      f->on_sensor(s);
+  } else {
+    msg::ActuatorFrame a{};
+    if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), a) == hil::DecodeError::kOk)
+      f->on_actuator(a);
+  }
+}
+
+TEST(LcmBadMessages, AreCountedByKindAndNeverApplied) {
+  TempDir d;
+  const std::string path = scene("monorail.toml");
+  ASSERT_EQ(
+      run({gyrostab_bin(), "run", path, "--ticks", "3000", "--no-progress", "--out", d / "inproc"}).code, 0);
+
+  Forger forger;
+  forger.lcm = lcm_create("udpm://239.255.76.67:7667?ttl=0");
+  ASSERT_NE(forger.lcm, nullptr);
+  for (const std::string& ch : {kSensorChannel, kActuatorChannel}) {
+    lcm_subscription_set_queue_capacity(lcm_subscribe(forger.lcm, ch.c_str(), on_message, &forger), 100'000);
+  }
+  std::atomic<bool> stop{false};
+  std::thread t([&] {
+    while (!stop) lcm_handle_timeout(forger.lcm, 50);
+  });
+  const Exit e = run({gyrostab_bin(), "run", path, "--transport", "lcm", "--ticks", "3000",
+                      "--channel-suffix", kSuffix, "--out", d / "lcm"});
+  stop = true;
+  t.join();
+  lcm_destroy(forger.lcm);
+  ASSERT_EQ(e.code, 0);
+  EXPECT_GT(forger.forged, 1000u);
+
+  // Nothing forged was applied: the run is the in-process run, bit for bit.
+  EXPECT_EQ(read_json(d / "lcm/report.json")["figures"].dump(),
+            read_json(d / "inproc/report.json")["figures"].dump());
+  EXPECT_TRUE(read_file(d / "lcm/signals.csv") == read_file(d / "inproc/signals.csv"));
+
+  const nlohmann::json r = read_json(d / "lcm/report.json");
+  const nlohmann::json& plant = r["link"]["counters"]["rejected"];
+  for (const char* kind :
+       {"size", "fingerprint", "non_finite", "out_of_range", "stale", "repeated", "ahead"}) {
+    EXPECT_GT(plant[kind].get<int>(), 0) << "plant: " << kind << " " << plant.dump();
+  }
+  EXPECT_EQ(r["link"]["counters"]["accepted"], 3000);
+  EXPECT_EQ(r["link"]["actuator_limits"]["torque_Nm"][1], 2000.0);
+  // Per forging round (every 10th tick): one NaN, two out of range (brake, torque).
+  EXPECT_EQ(plant["out_of_range"].get<int>(), 2 * plant["non_finite"].get<int>());
+  EXPECT_EQ(r["link"]["drive_watchdog"]["zero_torque_ticks"], 0);
+  const nlohmann::json& ctl = r["controller_process"]["link"]["counters"]["rejected"];
+  for (const char* kind : {"size", "fingerprint", "stale", "repeated", "ahead"}) {
+    EXPECT_GT(ctl[kind].get<int>(), 0) << "controller: " << kind << " " << ctl.dump();
+  }
+  EXPECT_EQ(r["controller_process"]["link"]["counters"]["accepted"], 3000);
+  EXPECT_EQ(r["timing"]["controller"]["fault_monitor"]["good_frames"], 3000);
+}
+
+}  // namespace
+}  // namespace gyrostab::testing
+
+GYROSTAB_LCM_TEST_MAIN()

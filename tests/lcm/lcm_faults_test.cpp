@@ -1,0 +1,215 @@
+// Fault reactions of the plant and controller processes over LCM (DESIGN §9), each through the fault
+// injections of `gyrostab run --transport lcm` or by killing a process:
+//   controller: sensor frames missing for N ticks ⇒ hold, then the safe state, status says why;
+//               NaN sensor frames ⇒ the fault monitor holds the last good one;
+//               the plant killed ⇒ receive timeout, the safe state within hold_ticks + 1 ticks, exit 6;
+//   plant:      actuator frames rejected (NaN) or missing (real time) ⇒ zero torque for those ticks;
+//               the controller silent or killed ⇒ receive timeout, zero torque after `latency` ticks, exit 6.
+// The scene is the monorail (1 kHz, latency 1, the fault monitor's default hold_ticks = 1); signals.csv has a
+// row every 10 ticks: the row at t = (k + 1)·1 ms shows the command applied in tick k, which latency 1 makes
+// the command of tick k − 1.
+#include <gtest/gtest.h>
+
+#include "tests/lcm/lcm_test_support.hpp"
+
+namespace gyrostab::testing {
+namespace {
+
+constexpr std::uint32_t kSensorMissing = 1u << 0, kSensorNonFinite = 1u << 2, kHolding = 1u << 8,
+                        kSafeState = 1u << 9;
+
+std::vector<std::string> lcm_run(const std::string& out, const std::string& ticks) {
+  return {gyrostab_bin(), "run", scene("monorail.toml"), "--transport", "lcm", "--ticks", ticks,
+          "--out",        out};
+}
+
+// The CSV cell of `column` in the row of time t = row_tick · 1 ms (rows every 10 ticks, the first at tick
+// 10).
+std::string cell_at(const std::string& csv, const std::string& column, int row_tick) {
+  const auto col = csv_column(csv, column);
+  const std::size_t row = static_cast<std::size_t>(row_tick / 10 - 1);
+  return row < col.size() ? col[row] : "<no row>";
+}
+
+TEST(LcmFaults, SensorFramesMissingForFiveTicksTripTheSafeStateAndSayWhy) {
+  TempDir d;
+  const Exit e = run(cat(lcm_run(d / "out", "1500"), {"--drop-sensor", "1000:5"}));
+  ASSERT_EQ(e.code, 0);
+  const nlohmann::json r = read_json(d / "out/report.json");
+  const nlohmann::json& fm = r["timing"]["controller"]["fault_monitor"];
+  EXPECT_EQ(fm["missing"], 5);
+  EXPECT_EQ(fm["trips"], 1);
+  // hold_ticks = 1: tick 1000 is held, tick 1001 is the safe state.
+  EXPECT_EQ(r["controller_process"]["link"]["safe_state_tick"], 1001);
+  EXPECT_EQ(r["controller_process"]["link"]["missing_ticks"], 5);
+  EXPECT_EQ(r["link"]["counters"]["dropped_by_fault"], 5);
+  // The commands of ticks 1000-1004 were answered late (after tick 1005's frame): the plant refused them as
+  // stale and its drives were at zero torque those ticks.
+  EXPECT_EQ(r["link"]["counters"]["rejected"]["stale"], 5);
+  EXPECT_EQ(r["link"]["drive_watchdog"]["zero_torque_ticks"], 5);
+  // Latched: every later command is the safe command with the reason. Row 1020 shows the command of 1018.
+  const std::string status = cell_at(read_file(d / "out/signals.csv"), "status_bits", 1020);
+  EXPECT_EQ(std::stoul(status), kSafeState | kSensorMissing);
+  EXPECT_EQ(cell_at(read_file(d / "out/signals.csv"), "motor_torque_Nm", 1020), "0");
+}
+
+TEST(LcmFaults, ANonFiniteSensorFrameIsHeldOverByTheFaultMonitor) {
+  TempDir d;
+  // Tick 1008's frame carries a NaN; row 1010 shows the command of tick 1008.
+  const Exit e = run(cat(lcm_run(d / "out", "1200"), {"--corrupt-sensor", "1008:1"}));
+  ASSERT_EQ(e.code, 0);
+  const nlohmann::json r = read_json(d / "out/report.json");
+  const nlohmann::json& fm = r["timing"]["controller"]["fault_monitor"];
+  EXPECT_EQ(fm["non_finite"], 1);
+  EXPECT_EQ(fm["held_ticks"], 1);
+  EXPECT_EQ(fm["trips"], 0);
+  EXPECT_EQ(r["controller_process"]["link"]["counters"]["accepted"], 1200)
+      << "the link passes content to the monitor";
+  const std::string csv = read_file(d / "out/signals.csv");
+  EXPECT_EQ(std::stoul(cell_at(csv, "status_bits", 1010)), kHolding | kSensorNonFinite);
+  EXPECT_EQ(std::stoul(cell_at(csv, "status_bits", 1020)), 0u) << "recovered: a held tick is not latched";
+}
+
+TEST(LcmFaults, RejectedActuatorFramesGiveZeroTorqueForThoseTicks) {
+  TempDir d;
+  const Exit e = run(cat(lcm_run(d / "out", "1600"), {"--corrupt-actuator", "1500:20"}));
+  ASSERT_EQ(e.code, 0);
+  const nlohmann::json r = read_json(d / "out/report.json");
+  const nlohmann::json& c = r["link"]["counters"];
+  EXPECT_EQ(c["rejected"]["non_finite"], 20);
+  EXPECT_EQ(c["accepted"], 1580);
+  EXPECT_EQ(r["link"]["drive_watchdog"]["zero_torque_ticks"], 20);
+  EXPECT_EQ(r["link"]["drive_watchdog"]["first_tick"], 1500);
+  const std::string csv = read_file(d / "out/signals.csv");
+  for (const int row : {1510, 1520}) {
+    EXPECT_EQ(cell_at(csv, "motor_torque_Nm", row), "0") << row;
+    EXPECT_EQ(cell_at(csv, "status_bits", row), "0") << row;
+  }
+  EXPECT_NE(cell_at(csv, "motor_torque_Nm", 1530), "0") << "the controller's commands apply again";
+}
+
+TEST(LcmFaults, ASilentControllerIsLostAtTheReceiveTimeoutAndTheDrivesStop) {
+  TempDir d;
+  // Lockstep: the controller withholds its answer to tick 1000, then waits for tick 1001 — both sides wait on
+  // each other, so the plant gets the shorter timeout to be the one that gives up first.
+  const std::vector<std::string> common{"--ticks", "3000", "--channel-suffix", "_silent"};
+  const pid_t c = spawn(cat({gyrostab_bin(), "controller", scene("monorail.toml"), "--out", d / "c",
+                             "--drop-actuator", "1000:1", "--timeout-ms", "3000"},
+                            common));
+  const Exit p = run(cat(
+      {gyrostab_bin(), "plant", scene("monorail.toml"), "--out", d / "p", "--timeout-ms", "300"}, common));
+  EXPECT_EQ(p.code, 6);
+  const nlohmann::json r = read_json(d / "p/report.json");
+  const nlohmann::json& peer = r["link"]["peer"];
+  EXPECT_EQ(peer["lost"], true);
+  EXPECT_EQ(peer["lost_at_tick"], 1000);
+  EXPECT_EQ(peer["zero_torque_from_tick"], 1001);  // latency 1
+  EXPECT_GE(peer["silent_ms"].get<double>(), 300.0);
+  EXPECT_GE(r["link"]["counters"]["resent"].get<int>(), 5) << "it asked again every 20 ms";
+  EXPECT_EQ(r["timing"]["ticks"], 1002) << "the plant stops after the first tick integrated at zero torque";
+  EXPECT_NE(r["link"]["what_happened"].get<std::string>().find("controller lost"), std::string::npos);
+  // The controller then loses the plant (it stopped after tick 1001) and reaches its safe state.
+  EXPECT_EQ(wait_for(c).code, 6);
+  const nlohmann::json rc = read_json(d / "c/report.json");
+  EXPECT_EQ(rc["link"]["peer"]["lost_at_tick"], 1002);
+  EXPECT_EQ(rc["link"]["peer"]["safe_state_tick"], 1003);
+}
+
+// Runs a long scene over LCM, kills `role` with SIGKILL after ~1.5 s and returns the merged report.
+nlohmann::json kill_one(const TempDir& d, const std::string& role, Exit& run_exit) {
+  const pid_t p = spawn({gyrostab_bin(), "run", scene("ship-roll-damper-active.toml"), "--transport", "lcm",
+                         "--timeout-ms", "300", "--out", d / "out"});
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  const std::vector<pid_t> victims = children_matching(p, "gyrostab " + role + " ");
+  EXPECT_EQ(victims.size(), 1u);
+  for (const pid_t v : victims) kill(v, SIGKILL);
+  run_exit = wait_for(p);
+  return read_json(d / "out/report.json");
+}
+
+TEST(LcmFaults, KillMinus9OfTheControllerStopsThePlantsDrivesAndIsReported) {
+  TempDir d;
+  Exit e;
+  const nlohmann::json r = kill_one(d, "controller", e);
+  EXPECT_EQ(e.code, 6);
+  EXPECT_EQ(r["processes"]["controller"]["killed_by_signal"], SIGKILL);
+  EXPECT_EQ(r["processes"]["plant"]["exit_code"], 6);
+  const nlohmann::json& peer = r["link"]["peer"];
+  ASSERT_EQ(peer["lost"], true);
+  const int lost = peer["lost_at_tick"].get<int>();
+  EXPECT_GT(lost, 0);
+  EXPECT_EQ(peer["zero_torque_from_tick"], lost + 1);
+  EXPECT_EQ(r["timing"]["ticks"], lost + 2);
+  EXPECT_EQ(r["link"]["drive_watchdog"]["first_tick"], lost);
+}
+
+TEST(LcmFaults, KillMinus9OfThePlantTakesTheControllerToItsSafeStateAndIsReported) {
+  TempDir d;
+  Exit e;
+  const nlohmann::json r = kill_one(d, "plant", e);
+  EXPECT_EQ(e.code, 6);
+  EXPECT_EQ(r["processes"]["plant"]["killed_by_signal"], SIGKILL);
+  EXPECT_EQ(r["processes"]["controller"]["exit_code"], 6);
+  const nlohmann::json& link = r["controller_process"]["link"];
+  ASSERT_EQ(link["peer"]["lost"], true);
+  const int lost = link["peer"]["lost_at_tick"].get<int>();
+  EXPECT_GT(lost, 0);
+  // hold_ticks = 1: the lost tick is held, the next is safe.
+  EXPECT_EQ(link["peer"]["safe_state_tick"], lost + 1);
+  EXPECT_EQ(link["peer"]["reaction_ticks"], 2);
+  EXPECT_LT(link["peer"]["silent_ms"].get<double>(), 2000.0) << "the steady-state timeout, not the start one";
+  EXPECT_EQ(r["timing"]["controller"]["fault_monitor"]["trips"], 1);
+  EXPECT_NE(r["processes"]["what_happened"].get<std::string>().find("plant killed by signal 9"),
+            std::string::npos);
+}
+
+TEST(LcmFaults, RealTimeMissingActuatorFramesGiveZeroTorqueAndJitterIsReported) {
+  TempDir d;
+  const Exit e = run(cat(lcm_run(d / "out", "2000"), {"--real-time", "--drop-actuator", "1000:20"}));
+  ASSERT_EQ(e.code, 0);
+  const nlohmann::json r = read_json(d / "out/report.json");
+  EXPECT_EQ(r["timing"]["mode"], "real_time");
+  for (const char* h : {"jitter_ns", "lateness_ns", "compute_ns", "period_ns"}) {
+    EXPECT_GT(r["timing"][h]["samples"].get<int>(), 1900) << h;
+    EXPECT_LE(r["timing"][h]["p50_ns"].get<long>(), r["timing"][h]["p99_ns"].get<long>()) << h;
+    EXPECT_LE(r["timing"][h]["p99_ns"].get<long>(), r["timing"][h]["max_ns"].get<long>()) << h;
+  }
+  EXPECT_EQ(r["controller_process"]["timing"]["mode"], "real_time");
+  EXPECT_TRUE(r["link"].contains("real_time_setup"));
+  // Timing on a shared VM is noisy: other ticks may miss their window too, these 20 cannot arrive.
+  EXPECT_GE(r["link"]["drive_watchdog"]["zero_torque_ticks"].get<int>(), 20);
+  EXPECT_GE(r["link"]["counters"]["missed_frames"].get<int>(), 20);
+  const std::string csv = read_file(d / "out/signals.csv");
+  EXPECT_EQ(cell_at(csv, "motor_torque_Nm", 1010), "0");
+  EXPECT_EQ(cell_at(csv, "motor_torque_Nm", 1020), "0");
+}
+
+TEST(LcmFaults, AProcessWithoutPeerGivesUpAtTheStartTimeout) {
+  TempDir d;
+  const Exit c = run({gyrostab_bin(), "controller", scene("monorail.toml"), "--start-timeout-ms", "200",
+                      "--channel-suffix", "_alone", "--out", d / "c"});
+  EXPECT_EQ(c.code, 6);
+  const nlohmann::json rc = read_json(d / "c/report.json");
+  EXPECT_EQ(rc["link"]["peer"]["lost_at_tick"], 0);
+  EXPECT_EQ(rc["link"]["peer"]["safe_state_tick"], 0)
+      << "awaiting the first frame, the command is the safe one";
+  const Exit p = run({gyrostab_bin(), "plant", scene("monorail.toml"), "--start-timeout-ms", "200",
+                      "--channel-suffix", "_alone", "--out", d / "p"});
+  EXPECT_EQ(p.code, 6);
+  const nlohmann::json rp = read_json(d / "p/report.json");
+  EXPECT_EQ(rp["link"]["peer"]["lost_at_tick"], 0);
+  EXPECT_GT(rp["link"]["counters"]["resent"].get<int>(), 0);
+}
+
+TEST(LcmFaults, BadOptionsAreRefusedWithExitTwo) {
+  EXPECT_EQ(run({gyrostab_bin(), "plant", scene("monorail.toml"), "--channel-suffix", "a.b"}).code, 2);
+  EXPECT_EQ(run({gyrostab_bin(), "run", scene("monorail.toml"), "--real-time"}).code, 2);
+  EXPECT_NE(
+      run({gyrostab_bin(), "run", scene("monorail.toml"), "--transport", "lcm", "--jitter", "abc"}).code, 0);
+  EXPECT_NE(run({gyrostab_bin(), "controller", scene("monorail.toml"), "--drop-actuator", "5"}).code, 0);
+}
+
+}  // namespace
+}  // namespace gyrostab::testing
+
+GYROSTAB_LCM_TEST_MAIN()

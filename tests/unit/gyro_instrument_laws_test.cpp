@@ -1,0 +1,292 @@
+// The gyro instruments' firmware (issue 6 part B): the correction laws of the gyro vertical (12.35), the
+// gyrocompass law (13.8) and its tuning formulas (13.12), (13.26), the Schuler loop (16.36)/(16.39), and the
+// three controllers through the common runtime API (frame mapping, hold and safe state on bad frames,
+// refused configurations, zero allocations). Expected values are computed here from the book's formulas.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+
+#include "firmware/app/gyro_vertical_controller.hpp"
+#include "firmware/app/gyrocompass_controller.hpp"
+#include "firmware/app/inertial_platform_controller.hpp"
+#include "firmware/control/gyro_vertical_correction.hpp"
+#include "firmware/control/gyrocompass_law.hpp"
+#include "firmware/control/law_status_bits.hpp"
+#include "firmware/control/schuler_loop.hpp"
+#include "firmware/msg/fault_bits.hpp"
+#include "tests/support/alloc_counter.hpp"
+
+namespace gyrostab::firmware {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+GyroVerticalCorrectionParams all_rows() {
+  GyroVerticalCorrectionParams p;
+  p.H = 0.5;
+  p.c1 = 1.0, p.c2 = 2.0;
+  p.d1 = 3.0, p.d2 = 4.0;
+  p.r1 = 5.0, p.r2 = 6.0;
+  p.f1 = 7.0, p.f2 = 8.0;
+  p.g1 = 9.0, p.g2 = 10.0;
+  p.torque_limit_Nm = 1e6;
+  return p;
+}
+
+TEST(GyroVerticalCorrection, EachRowOfTable12_35) {
+  const GyroVerticalCorrectionParams p = all_rows();
+  const CorrectionSignals s{0.1, -0.2, 0.3, -0.4, 0.0};
+  const CorrectionTorques r1 = pendulous_row(p, s), r2 = viscous_row(p, s), r3 = coulomb_row(p, s),
+                          r4 = linear_correction_row(p, s), r5 = relay_correction_row(p, s);
+  EXPECT_DOUBLE_EQ(r1.M1, -1.0 * 0.1);
+  EXPECT_DOUBLE_EQ(r1.M2, -2.0 * -0.2);
+  EXPECT_DOUBLE_EQ(r2.M1, -3.0 * 0.3);
+  EXPECT_DOUBLE_EQ(r2.M2, -4.0 * -0.4);
+  EXPECT_DOUBLE_EQ(r3.M1, -5.0);   // −r1 sgn α'
+  EXPECT_DOUBLE_EQ(r3.M2, 6.0);    // −r2 sgn β'
+  EXPECT_DOUBLE_EQ(r4.M1, -7.0 * -0.2);  // −f1 e2
+  EXPECT_DOUBLE_EQ(r4.M2, 8.0 * 0.1);    // +f2 e1
+  EXPECT_DOUBLE_EQ(r5.M1, 9.0);    // −g1 sgn e2
+  EXPECT_DOUBLE_EQ(r5.M2, 10.0);   // +g2 sgn e1
+  const CorrectionTorques sum = gyro_vertical_correction(p, s);
+  EXPECT_DOUBLE_EQ(sum.M1, r1.M1 + r2.M1 + r3.M1 + r4.M1 + r5.M1);
+  EXPECT_DOUBLE_EQ(sum.M2, r1.M2 + r2.M2 + r3.M2 + r4.M2 + r5.M2);
+  EXPECT_FALSE(sum.cut_out);
+  EXPECT_FALSE(sum.limited);
+}
+
+TEST(GyroVerticalCorrection, DeadBandsCutOutAndLimit) {
+  GyroVerticalCorrectionParams p = all_rows();
+  p.rate_deadband = 0.5;
+  p.tilt_deadband = 0.15;
+  const CorrectionSignals s{0.1, -0.2, 0.3, -0.4, 0.0};
+  EXPECT_DOUBLE_EQ(coulomb_row(p, s).M1, 0.0);  // |α'| ≤ band
+  EXPECT_DOUBLE_EQ(relay_correction_row(p, s).M2, 0.0);  // |e1| ≤ band
+  EXPECT_DOUBLE_EQ(relay_correction_row(p, s).M1, 9.0);  // |e2| > band
+  EXPECT_DOUBLE_EQ(sgn_deadband(0.0, 0.0), 0.0);
+  // Turn cut-out (the book's remedy): above the threshold both torques (or M1 only) are zero.
+  p.turn_cutout_rate = 0.01;
+  CorrectionSignals turning = s;
+  turning.turn_rate = -0.02;
+  CorrectionTorques t = gyro_vertical_correction(p, turning);
+  EXPECT_TRUE(t.cut_out);
+  EXPECT_EQ(t.M1, 0.0);
+  EXPECT_EQ(t.M2, 0.0);
+  p.cutout = TurnCutout::kAxis1;
+  t = gyro_vertical_correction(p, turning);
+  EXPECT_EQ(t.M1, 0.0);
+  EXPECT_NE(t.M2, 0.0);
+  turning.turn_rate = 0.005;  // below: no cut-out
+  EXPECT_FALSE(gyro_vertical_correction(p, turning).cut_out);
+  // Limit.
+  p.torque_limit_Nm = 0.5;
+  t = gyro_vertical_correction(p, s);
+  EXPECT_TRUE(t.limited);
+  EXPECT_LE(std::fabs(t.M1), 0.5);
+  EXPECT_LE(std::fabs(t.M2), 0.5);
+}
+
+TEST(GyroVerticalCorrection, StartUpCheck) {
+  GyroVerticalCorrectionParams p;
+  p.f1 = p.f2 = 0.01;
+  EXPECT_TRUE(check_gyro_vertical_correction(p, 1e-3).ok);
+  GyroVerticalCorrectionParams bad = p;
+  bad.f1 = -1.0;
+  EXPECT_FALSE(check_gyro_vertical_correction(bad, 1e-3).ok);
+  bad = p;
+  bad.g2 = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(check_gyro_vertical_correction(bad, 1e-3).ok);
+  bad = p;
+  bad.f2 = 0.6 * p.H / 1e-3;  // (c + f) T/H > 0.5
+  const ConfigCheck c = check_gyro_vertical_correction(bad, 1e-3);
+  EXPECT_FALSE(c.ok);
+  EXPECT_DOUBLE_EQ(c.upper, 0.5 * p.H / 1e-3);
+  bad = p;
+  bad.d1 = bad.d2 = p.H;  // d1 d2/H² = 1
+  EXPECT_FALSE(check_gyro_vertical_correction(bad, 1e-3).ok);
+  bad = p;
+  bad.torque_limit_Nm = 0.0;
+  EXPECT_FALSE(check_gyro_vertical_correction(bad, 1e-3).ok);
+}
+
+TEST(GyrocompassLaw, TorquesTuningAndChecks) {
+  GyrocompassLawParams p{2.0, 0.05, 0.03, 1.0};
+  const GyrocompassTorques t = gyrocompass_torques(p, 1e-3);
+  EXPECT_DOUBLE_EQ(t.M1, -0.05e-3);  // (13.8) M1 = −f β
+  EXPECT_DOUBLE_EQ(t.M2, -0.03e-3);  // electrical pendulosity M2 = −c_e β
+  EXPECT_FALSE(t.limited);
+  p.torque_limit_Nm = 1e-5;
+  EXPECT_TRUE(gyrocompass_torques(p, 1e-3).limited);
+  // (13.26) at 50°: c/H = 0.03285 /s (digest); (13.12) damping for ζ = 0.3 gives δ = 7.45e-4 /s.
+  const double lat = 50.0 * kPi / 180.0, we = 7.292115e-5;
+  const double c = schuler_tuned_pendulosity(2.0, lat, 9.81, 6.371e6, we);
+  EXPECT_NEAR(c / 2.0, 0.03285, 5e-6);
+  EXPECT_NEAR(gyrocompass_damping_for_ratio(2.0, c, lat, 0.3, we) / 2.0, 7.45e-4, 5e-7);
+  p.torque_limit_Nm = 1.0;
+  EXPECT_TRUE(check_gyrocompass_law(p, 0.01).ok);
+  GyrocompassLawParams bad = p;
+  bad.f = 0.6 * p.H / 0.01;
+  EXPECT_FALSE(check_gyrocompass_law(bad, 0.01).ok);
+  bad = p;
+  bad.c_e = -1.0;
+  EXPECT_FALSE(check_gyrocompass_law(bad, 0.01).ok);
+  bad = p;
+  bad.H = 0.0;
+  EXPECT_FALSE(check_gyrocompass_law(bad, 0.01).ok);
+}
+
+TEST(SchulerLoopLaw, IntegratorTorqueResetAndChecks) {
+  SchulerLoopParams p;
+  p.radius = 6.371e6;
+  p.H = 0.05;
+  p.initial_rate[0] = 1e-5;
+  p.initial_rate[1] = -2e-5;
+  const double T = 5e-3;
+  ASSERT_TRUE(check_schuler_loop(p, T).ok);
+  SchulerLoop loop(p, T);
+  const double theta[2] = {1e-4, -3e-4};
+  const SchulerTorques m = loop.step(theta);
+  const double w0 = 1e-5 - p.gravity_scale / p.radius * T * 1e-4;  // ω ← ω − (g0/R) θ T (16.36)
+  const double w1 = -2e-5 + p.gravity_scale / p.radius * T * 3e-4;
+  EXPECT_DOUBLE_EQ(loop.commanded_rate(0), w0);
+  EXPECT_DOUBLE_EQ(loop.commanded_rate(1), w1);
+  EXPECT_DOUBLE_EQ(m.M[0], -p.H * w0);  // (16.39) M^K = −H ω_cmd
+  EXPECT_DOUBLE_EQ(m.M[1], -p.H * w1);
+  EXPECT_DOUBLE_EQ(loop.velocity_estimate(0), p.radius * w0);
+  loop.reset();  // keeps the navigation state
+  EXPECT_DOUBLE_EQ(loop.commanded_rate(0), w0);
+  const double nan_theta[2] = {std::numeric_limits<double>::quiet_NaN(), 0.0};
+  loop.step(nan_theta);
+  EXPECT_DOUBLE_EQ(loop.commanded_rate(0), w0);
+  p.enabled[1] = false;
+  SchulerLoop one(p, T);
+  EXPECT_EQ(one.step(theta).M[1], 0.0);
+  SchulerLoopParams bad = p;
+  bad.radius = 0.0;
+  EXPECT_FALSE(check_schuler_loop(bad, T).ok);
+  EXPECT_FALSE(check_schuler_loop(p, 100.0).ok);  // ω_S T = 0.12 > 1e-2
+  bad = p;
+  bad.initial_rate[0] = 1.0;
+  EXPECT_FALSE(check_schuler_loop(bad, T).ok);
+}
+
+msg::SensorFrame frame(std::uint64_t k) {
+  msg::SensorFrame f{};
+  f.tick = k;
+  f.time_ns = static_cast<std::int64_t>(k) * 1'000'000;
+  f.sample_time_ns = f.time_ns;
+  f.sequence = static_cast<std::uint32_t>(k);
+  f.gimbal_angle_rad[msg::kAxis1] = 0.01;
+  f.gimbal_angle_rad[msg::kAxis2] = -0.02;
+  f.gimbal_rate_rad_s[msg::kAxis1] = 1e-3;
+  f.gimbal_rate_rad_s[msg::kAxis2] = -2e-3;
+  f.carrier_angle_rad[msg::kRoll] = 3e-4;
+  f.carrier_angle_rad[msg::kPitch] = -1e-4;
+  f.carrier_rate_rad_s[msg::kYaw] = 0.02;
+  return f;
+}
+
+template <class Controller>
+void expect_hold_then_safe(Controller& c) {
+  msg::ActuatorFrame out{};
+  for (std::uint64_t k = 0; k < 5; ++k) c.step(k, nullptr, out);  // awaiting the first frame: safe values
+  msg::SensorFrame f = frame(5);
+  c.step(5, &f, out);
+  const double m1 = out.gimbal_torque_Nm[msg::kAxis1];
+  c.step(6, nullptr, out);  // held
+  EXPECT_TRUE(out.status & msg::bit(msg::FaultBit::kHoldingLastGood));
+  EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis1], m1);
+  c.step(7, nullptr, out);  // safe state: zero torque
+  EXPECT_TRUE(out.status & msg::bit(msg::FaultBit::kSafeState));
+  EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis1], 0.0);
+  EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis2], 0.0);
+}
+
+TEST(GyroInstrumentControllers, GyroVerticalMapsTheFrameOntoTheLaw) {
+  GyroVerticalConfig cfg;
+  cfg.law.f1 = cfg.law.f2 = 0.01;
+  cfg.law.c1 = cfg.law.c2 = 0.002;
+  cfg.law.turn_cutout_rate = 0.05;
+  GyroVerticalController c(cfg);
+  ASSERT_TRUE(c.armed());
+  msg::SensorFrame f = frame(0);
+  msg::ActuatorFrame out{};
+  c.step(0, &f, out);
+  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis1], -0.002 * 0.01 - 0.01 * -0.02);  // −c1 e1 − f1 e2
+  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis2], -0.002 * -0.02 + 0.01 * 0.01);  // −c2 e2 + f2 e1
+  EXPECT_EQ(out.precession_brake, 0.0);
+  f = frame(1);
+  f.carrier_rate_rad_s[msg::kYaw] = 0.06;  // turning: cut out
+  c.step(1, &f, out);
+  EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis1], 0.0);
+  EXPECT_TRUE(out.status & bit(LawStatusBit::kCorrectionCutOut));
+  GyroVerticalController h(cfg);
+  expect_hold_then_safe(h);
+  GyroVerticalConfig bad = cfg;
+  bad.law.f1 = -1;
+  GyroVerticalController r(bad);
+  EXPECT_FALSE(r.armed());
+  r.step(0, &f, out);
+  EXPECT_TRUE(out.status & bit(LawStatusBit::kConfigRefused));
+  EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis1], 0.0);
+}
+
+TEST(GyroInstrumentControllers, GyrocompassMapsTheLevelSensor) {
+  GyrocompassConfig cfg;
+  cfg.runtime.tick_period_ns = 10'000'000;
+  cfg.law = {2.0, 0.0015, 0.06, 0.1};
+  GyrocompassController c(cfg);
+  ASSERT_TRUE(c.armed());
+  msg::SensorFrame f = frame(0);
+  msg::ActuatorFrame out{};
+  c.step(0, &f, out);
+  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis1], -0.0015 * -0.02);
+  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis2], -0.06 * -0.02);
+  GyrocompassController h(cfg);
+  expect_hold_then_safe(h);
+}
+
+TEST(GyroInstrumentControllers, InertialPlatformRunsTheSchulerLoopOnTheCarrierTilts) {
+  InertialPlatformConfig cfg;
+  cfg.runtime.tick_period_ns = 5'000'000;
+  cfg.law.H = 0.05;
+  cfg.law.initial_rate[0] = 1e-5;
+  InertialPlatformController c(cfg);
+  ASSERT_TRUE(c.armed());
+  msg::SensorFrame f = frame(0);
+  msg::ActuatorFrame out{};
+  c.step(0, &f, out);
+  const double g0R = cfg.law.gravity_scale / cfg.law.radius * 5e-3;
+  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis1], -0.05 * (1e-5 - g0R * 3e-4));
+  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis2], -0.05 * (0.0 - g0R * -1e-4));
+  EXPECT_DOUBLE_EQ(c.velocity_estimate(0), cfg.law.radius * (1e-5 - g0R * 3e-4));
+  InertialPlatformController h(cfg);
+  expect_hold_then_safe(h);
+}
+
+TEST(GyroInstrumentControllers, NoHeapOverAMillionSteps) {
+  GyroVerticalConfig gv;
+  gv.law.f1 = gv.law.f2 = 0.01;
+  GyrocompassConfig gc;
+  gc.law = {2.0, 0.0015, 0.06, 0.1};
+  InertialPlatformConfig ip;
+  GyroVerticalController a(gv);
+  GyrocompassController b(gc);
+  InertialPlatformController c(ip);
+  msg::ActuatorFrame out{};
+  const std::uint64_t before = testing::allocations_so_far();
+  for (std::uint64_t k = 0; k < 1'000'000; ++k) {
+    msg::SensorFrame f = frame(k);
+    const bool drop = (k % 1000) == 999;
+    a.step(k, drop ? nullptr : &f, out);
+    b.step(k, drop ? nullptr : &f, out);
+    c.step(k, drop ? nullptr : &f, out);
+  }
+  EXPECT_EQ(testing::allocations_so_far() - before, 0u);
+}
+
+}  // namespace
+}  // namespace gyrostab::firmware

@@ -1,0 +1,56 @@
+// report.json blocks of a plant or controller process: the link counters ("link") and the timing
+// statistics ("timing" additions), see docs/transport.md.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "hil/link/link_counters.hpp"
+#include "hil/rt/latency_histogram.hpp"
+#include "tools/run/link_settings.hpp"
+#include "tools/run/link_stats.hpp"
+
+namespace gyrostab::tools {
+
+inline nlohmann::json histogram_json(const hil::LatencyHistogram& h) {
+  return {{"samples", h.count()},          {"min_ns", h.min_ns()}, {"p50_ns", h.quantile_ns(0.50)},
+          {"p99_ns", h.quantile_ns(0.99)}, {"max_ns", h.max_ns()}, {"mean_ns", h.mean_ns()}};
+}
+
+inline nlohmann::json counters_json(const hil::LinkCounters& c) {
+  return {{"sent", c.sent},
+          {"send_errors", c.send_errors},
+          {"resent", c.resent},
+          {"dropped_by_fault", c.dropped_by_fault},
+          {"corrupted_by_fault", c.corrupted_by_fault},
+          {"received", c.received},
+          {"accepted", c.accepted},
+          {"rejected",
+           {{"total", c.rejected()},
+            {"size", c.rejected_size},
+            {"fingerprint", c.rejected_fingerprint},
+            {"malformed", c.rejected_malformed},
+            {"non_finite", c.rejected_non_finite},
+            {"out_of_range", c.rejected_out_of_range},
+            {"stale", c.rejected_stale},
+            {"repeated", c.rejected_repeated},
+            {"ahead", c.rejected_ahead}}},
+          {"missed_frames", c.missed_frames},
+          {"timeouts", c.timeouts}};
+}
+
+inline nlohmann::json link_timing_json(const LinkStats& s, const LinkSettings& settings) {
+  nlohmann::json t{{"mode", settings.real_time ? "real_time" : "lockstep"},
+                   {"period_target_ns", settings.period_ns},
+                   {"period_ns", histogram_json(s.period)},
+                   {"compute_ns", histogram_json(s.compute)},
+                   {"overruns", s.overruns}};
+  if (settings.real_time) {
+    t["jitter_ns"] = histogram_json(s.jitter);
+    if (s.lateness.count() > 0) t["lateness_ns"] = histogram_json(s.lateness);
+  }
+  if (s.round_trip.count() > 0) t["round_trip_ns"] = histogram_json(s.round_trip);
+  return t;
+}
+
+}  // namespace gyrostab::tools
