@@ -62,17 +62,58 @@ struct NoTickSink {
 //   void record(double* row) const;          // Device::columns() names, in order
 //   msg::ActuatorFrame initial_command() const;
 //   auto& controller();                      // step(tick, const SensorFrame*, ActuatorFrame&)
+// The plant's half of tick k, shared by the in-process loop and the plant process (lockstep runs are
+// bit-identical to in-process because both run this code): the controller's command of tick k enters the
+// latency pipe, the one due at k is applied (zero-order hold; until then the device's initial command), the
+// plant integrates [k, k + 1), the guard checks the state and the recorder samples the row at k + 1.
+// Returns false at the first non-finite state (`out` says where).
+template <class Device>
+class PlantTick {
+ public:
+  PlantTick(Device& device, const LoopConfig& cfg, Recorder* recorder)
+      : device_(device), cfg_(cfg), recorder_(recorder), applied_(device.initial_command()) {}
+
+  bool step(std::int64_t k, const msg::ActuatorFrame& command, LoopOutcome& out) {
+    const int latency = cfg_.latency_ticks;
+    if (latency == 0) {
+      applied_ = command;
+    } else {
+      pipe_[static_cast<std::size_t>((k + latency) % (kMaxLatencyTicks + 1))] = command;
+      if (k >= latency) applied_ = pipe_[static_cast<std::size_t>(k % (kMaxLatencyTicks + 1))];
+    }
+    device_.actuate(applied_);
+    guard_.remember(device_);
+    device_.advance(k);
+    out.ticks_run = k + 1;
+    if (!device_.finite()) {
+      out.diverged = true;
+      out.diverged_tick = k;
+      out.diverged_state = guard_.locate(device_);
+      return false;
+    }
+    if (recorder_ && recorder_->due(k + 1)) {
+      if (double* row = recorder_->row(static_cast<double>(k + 1) * cfg_.tick_s())) device_.record(row);
+    }
+    return true;
+  }
+
+ private:
+  Device& device_;
+  const LoopConfig& cfg_;
+  Recorder* recorder_;
+  std::array<msg::ActuatorFrame, kMaxLatencyTicks + 1> pipe_{};
+  msg::ActuatorFrame applied_;
+  StateGuard<Device> guard_;
+};
+
 template <class Device, class Sink = NoTickSink>
 LoopOutcome run_closed_loop(Device& device, const LoopConfig& cfg, Recorder* recorder, bool progress = false,
                             Sink* sink = nullptr) {
   LoopOutcome out;
   const std::int64_t ticks = cfg.ticks();
-  const int latency = cfg.latency_ticks;
-  std::array<msg::ActuatorFrame, kMaxLatencyTicks + 1> pipe{};
+  PlantTick<Device> plant(device, cfg, recorder);
   msg::SensorFrame sensor{};
   msg::ActuatorFrame command{};
-  msg::ActuatorFrame applied = device.initial_command();
-  StateGuard<Device> guard;
   const auto start = std::chrono::steady_clock::now();
   const bool show = progress && isatty(STDERR_FILENO);
   auto last_report = start;
@@ -91,25 +132,7 @@ LoopOutcome run_closed_loop(Device& device, const LoopConfig& cfg, Recorder* rec
         break;
       }
     }
-    if (latency == 0) {
-      applied = command;
-    } else {
-      pipe[static_cast<std::size_t>((k + latency) % (kMaxLatencyTicks + 1))] = command;
-      if (k >= latency) applied = pipe[static_cast<std::size_t>(k % (kMaxLatencyTicks + 1))];
-    }
-    device.actuate(applied);
-    guard.remember(device);
-    device.advance(k);
-    out.ticks_run = k + 1;
-    if (!device.finite()) {
-      out.diverged = true;
-      out.diverged_tick = k;
-      out.diverged_state = guard.locate(device);
-      break;
-    }
-    if (recorder && recorder->due(k + 1)) {
-      if (double* row = recorder->row(static_cast<double>(k + 1) * cfg.tick_s())) device.record(row);
-    }
+    if (!plant.step(k, command, out)) break;
     if (show && (k & 0xFFFF) == 0) {
       const auto now = std::chrono::steady_clock::now();
       if (now - last_report > std::chrono::seconds(1)) {

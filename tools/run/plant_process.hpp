@@ -138,12 +138,10 @@ LoopOutcome run_plant_loop(Device& device, const LoopConfig& cfg, const RunReque
   const TransportOptions& t = req.transport;
   hil::FrameOrder order;
   JitterInjector jitter(s, cfg.seed);
-  std::array<msg::ActuatorFrame, kMaxLatencyTicks + 1> pipe{};
+  PlantTick<Device> plant(device, cfg, recorder);
   msg::SensorFrame sensor{};
   msg::SensorFrame published{};
   msg::ActuatorFrame command{};
-  msg::ActuatorFrame applied = device.initial_command();
-  StateGuard<Device> guard;
   std::int64_t epoch = 0;
   std::int64_t last_heard = hil::monotonic_ns();
   std::int64_t stop_after = std::numeric_limits<std::int64_t>::max();
@@ -233,25 +231,7 @@ LoopOutcome run_plant_loop(Device& device, const LoopConfig& cfg, const RunReque
         break;
       }
     }
-    if (latency == 0) {
-      applied = command;
-    } else {
-      pipe[static_cast<std::size_t>((k + latency) % (kMaxLatencyTicks + 1))] = command;
-      if (k >= latency) applied = pipe[static_cast<std::size_t>(k % (kMaxLatencyTicks + 1))];
-    }
-    device.actuate(applied);
-    guard.remember(device);
-    device.advance(k);
-    out.ticks_run = k + 1;
-    if (!device.finite()) {
-      out.diverged = true;
-      out.diverged_tick = k;
-      out.diverged_state = guard.locate(device);
-      break;
-    }
-    if (recorder && recorder->due(k + 1)) {
-      if (double* row = recorder->row(static_cast<double>(k + 1) * cfg.tick_s())) device.record(row);
-    }
+    if (!plant.step(k, command, out)) break;
     const std::int64_t t_end = hil::monotonic_ns();
     stats.compute.add((t_end - t_start) - (t_got - t_sent));
     if (s.real_time && !handshake && t_end > epoch + (k + 1) * s.period_ns) ++stats.overruns;

@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "tools/log/frame_diff.hpp"
+#include "tools/run/closed_loop.hpp"
 #include "tools/run/controller_report.hpp"
 #include "hil/can/candump_log.hpp"
 #include "tools/run/replay_session.hpp"
@@ -32,9 +33,7 @@ int resimulate_plant(Device& device, const LoopConfig& loop, const RunRequest& r
   int exit_code = 0;
   if (!session.open(loop, req, exit_code)) return exit_code;
   Recorder rec(Device::columns(), loop.ticks(), loop.record_every);
-  const int latency = loop.latency_ticks;
-  std::array<msg::ActuatorFrame, kMaxLatencyTicks + 1> pipe{};
-  msg::ActuatorFrame applied = device.initial_command();
+  PlantTick<Device> plant(device, loop, &rec);
   msg::SensorFrame sensed{};
   buslog::TickRecord t;
   LoopOutcome outcome;
@@ -52,18 +51,7 @@ int resimulate_plant(Device& device, const LoopConfig& loop, const RunRequest& r
       rc = kReplayExitMismatch;
       break;
     }
-    if (latency == 0) {
-      applied = t.actuator;
-    } else {
-      pipe[static_cast<std::size_t>((k + latency) % (kMaxLatencyTicks + 1))] = t.actuator;
-      if (k >= latency) applied = pipe[static_cast<std::size_t>(k % (kMaxLatencyTicks + 1))];
-    }
-    device.actuate(applied);
-    device.advance(k);
-    outcome.ticks_run = k + 1;
-    if (!device.finite()) {
-      outcome.diverged = true;
-      outcome.diverged_tick = k;
+    if (!plant.step(k, t.actuator, outcome)) {
       s = session.next(t);
       const bool recorded = s == buslog::ReadStatus::kEnd &&
                             session.reader().end_event().reason == buslog::EndReason::kDiverged &&
@@ -74,9 +62,6 @@ int resimulate_plant(Device& device, const LoopConfig& loop, const RunRequest& r
                    s == buslog::ReadStatus::kOk ? "went on" : "has no such end");
       rc = 3;
       break;
-    }
-    if (rec.due(k + 1)) {
-      if (double* row = rec.row(static_cast<double>(k + 1) * loop.tick_s())) device.record(row);
     }
   }
   outcome.wall_s = session.elapsed_s();
