@@ -122,6 +122,29 @@ TEST(CanClosedLoop, ASceneOverTheBusLoadLimitIsRefusedBeforeAnythingIsSent) {
   EXPECT_EQ(f.code, 2);
 }
 
+// Real time over CAN (as over LCM, docs/transport.md): both sides paced by CLOCK_MONOTONIC deadlines; the
+// report carries period, jitter, lateness and compute time; actuator frames withheld for 10 ticks give zero
+// torque for those ticks (the drive watchdog), and the run completes. The 20 ms Schuler monitor scene keeps
+// the emulated VM (TCG, ~6 700 FD frames/s) inside its deadlines; timing itself is never asserted.
+TEST(CanClosedLoop, RealTimeRunReportsItsTimingAndMissingCommandsGiveZeroTorque) {
+  TempDir d;
+  const Exit e = run({gyrostab_bin(), "run", scene("schuler-gyro-pendulum.toml"), "--transport", "can", "--can-if",
+                      can_if(), "--real-time", "--ticks", "150", "--drop-actuator", "60:10", "--no-progress",
+                      "--out", d / "rt"});
+  ASSERT_EQ(e.code, 0);
+  const nlohmann::json r = read_json(d / "rt/report.json");
+  EXPECT_EQ(r["processes"]["transport"], "can");
+  EXPECT_EQ(r["timing"]["mode"], "real_time");
+  EXPECT_EQ(r["controller_process"]["timing"]["mode"], "real_time");
+  for (const char* h : {"jitter_ns", "lateness_ns", "compute_ns", "period_ns"}) {
+    EXPECT_GT(r["timing"][h]["samples"].get<int>(), 140) << h;
+    EXPECT_LE(r["timing"][h]["p50_ns"].get<long>(), r["timing"][h]["p99_ns"].get<long>()) << h;
+    EXPECT_LE(r["timing"][h]["p99_ns"].get<long>(), r["timing"][h]["max_ns"].get<long>()) << h;
+  }
+  EXPECT_GE(r["link"]["drive_watchdog"]["zero_torque_ticks"].get<int>(), 10);
+  EXPECT_GE(r["link"]["counters"]["missed_frames"].get<int>(), 10);
+}
+
 }  // namespace
 }  // namespace gyrostab::testing
 
