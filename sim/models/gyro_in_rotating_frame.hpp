@@ -25,6 +25,7 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 #include "sim/dynamics/quaternion.hpp"
 
@@ -90,6 +91,71 @@ inline void gyro_frame_precession_rates(const GyroFrameParams& p, const FrameSam
 // Nutation frequency H/sqrt(AB) of (10.17) [rad/s] (the fastest mode of the full form).
 inline double nutation_frequency(const GyroFrameParams& p) {
   return p.H / std::sqrt(p.A * p.B);
+}
+
+enum class InstrumentFidelity {
+  kFull,        // (10.22) with nutation
+  kPrecession,  // A = B = 0
+};
+
+// The parameter checks every instrument on (10.22) shares (c: its pendulous moment, d1, d2: its viscous
+// torques): nullptr if usable, else why not (scene validation).
+inline const char* gyro_frame_invalid_reason(const GyroFrameParams& gyro, InstrumentFidelity fidelity, double c,
+                                             double d1, double d2) {
+  const auto fin = [](double v) { return std::isfinite(v); };
+  if (!(fin(gyro.H) && gyro.H > 0.0)) return "H must be finite and > 0";
+  if (fidelity == InstrumentFidelity::kFull && !(fin(gyro.A) && gyro.A > 0.0 && fin(gyro.B) && gyro.B > 0.0))
+    return "A, B must be finite and > 0 for the full form";
+  if (!(fin(c) && c >= 0.0)) return "c (pendulous moment) must be finite and >= 0";
+  if (!(fin(d1) && d1 >= 0.0 && fin(d2) && d2 >= 0.0)) return "d1, d2 must be finite and >= 0";
+  return nullptr;
+}
+
+// No rate-dependent torque besides the viscous rows.
+struct NoGimbalFriction {};
+
+// Entries 0-3 of dx for a state x = [α, β, α', β', ...] by (10.22), with the torques split as the devices'
+// tables are: M1s, M2s rate-independent [N m]; viscous −d1 α', −d2 β'; and `friction(α', β', F1, F2)`, any
+// other rate-dependent torque (subtracted, full form only: the precession form solves the viscous rows
+// exactly and cannot resolve the rest). Precession form: (α', β') from gyro_frame_precession_rates and
+// dx[2] = dx[3] = 0 (x[2], x[3] unused). O(1).
+template <class State, class Friction = NoGimbalFriction>
+inline void gyro_frame_derivative(const GyroFrameParams& p, InstrumentFidelity fidelity, const FrameSample& w,
+                                  const State& x, double M1s, double M2s, double d1, double d2, State& dx,
+                                  const Friction& friction = {}) {
+  if (fidelity == InstrumentFidelity::kPrecession) {
+    gyro_frame_precession_rates(p, w, x[0], x[1], M1s, M2s, d1, d2, dx[0], dx[1]);
+    dx[2] = 0.0;
+    dx[3] = 0.0;
+    return;
+  }
+  double M1 = M1s - d1 * x[2];
+  double M2 = M2s - d2 * x[3];
+  if constexpr (!std::is_same_v<Friction, NoGimbalFriction>) {
+    double F1, F2;
+    friction(x[2], x[3], F1, F2);
+    M1 -= F1;
+    M2 -= F2;
+  }
+  dx[0] = x[2];
+  dx[1] = x[3];
+  gyro_frame_accelerations(p, w, x[0], x[1], x[2], x[3], M1, M2, dx[2], dx[3]);
+}
+
+// (α', β') at time t [rad/s]: the state's (full form) or the precession solution's (from the model's
+// derivative). Model: State, derivative(t, x, dx) with the layout of gyro_frame_derivative.
+template <class Model>
+inline void gyro_frame_rates(const Model& m, InstrumentFidelity fidelity, double t, const typename Model::State& x,
+                             double& alpha_rate, double& beta_rate) {
+  if (fidelity == InstrumentFidelity::kFull) {
+    alpha_rate = x[2];
+    beta_rate = x[3];
+    return;
+  }
+  typename Model::State dx;
+  m.derivative(t, x, dx);
+  alpha_rate = dx[0];
+  beta_rate = dx[1];
 }
 
 }  // namespace gyrostab::models

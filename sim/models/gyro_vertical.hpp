@@ -48,11 +48,6 @@
 
 namespace gyrostab::models {
 
-enum class InstrumentFidelity {
-  kFull,        // (10.22) with nutation
-  kPrecession,  // A = B = 0
-};
-
 struct GyroVerticalParams {
   GyroFrameParams gyro{2e-3, 2e-3, 0.5};
   double c{2.5e-3};           // pendulous moment m g s, row 1 [N m/rad]
@@ -63,12 +58,8 @@ struct GyroVerticalParams {
 
   // nullptr if usable, else why not (scene validation).
   const char* invalid_reason() const {
+    if (const char* why = gyro_frame_invalid_reason(gyro, fidelity, c, d1, d2)) return why;
     const auto fin = [](double v) { return std::isfinite(v); };
-    if (!(fin(gyro.H) && gyro.H > 0.0)) return "H must be finite and > 0";
-    if (fidelity == InstrumentFidelity::kFull && !(fin(gyro.A) && gyro.A > 0.0 && fin(gyro.B) && gyro.B > 0.0))
-      return "A, B must be finite and > 0 for the full form";
-    if (!(fin(c) && c >= 0.0)) return "c (pendulous moment) must be finite and >= 0";
-    if (!(fin(d1) && d1 >= 0.0 && fin(d2) && d2 >= 0.0)) return "d1, d2 must be finite and >= 0";
     if (!(fin(r1) && r1 >= 0.0 && fin(r2) && r2 >= 0.0)) return "r1, r2 must be finite and >= 0";
     if (!(fin(coulomb_rate) && coulomb_rate > 0.0)) return "coulomb_rate must be finite and > 0";
     if (fidelity == InstrumentFidelity::kPrecession && (r1 > 0.0 || r2 > 0.0))
@@ -114,31 +105,17 @@ class GyroVertical {
     const ApparentVertical L = apparent_vertical(w.f);
     const double M1s = -p_.c * (x[0] - L.alpha_L) + inputs.M1;
     const double M2s = -p_.c * (x[1] - L.beta_L) + inputs.M2;
-    if (p_.fidelity == InstrumentFidelity::kPrecession) {
-      gyro_frame_precession_rates(p_.gyro, w, x[0], x[1], M1s, M2s, p_.d1, p_.d2, dx[0], dx[1]);
-      dx[2] = 0.0;
-      dx[3] = 0.0;
-      return;
-    }
-    const double M1 = M1s - p_.d1 * x[2] - p_.r1 * sat(x[2] / p_.coulomb_rate);
-    const double M2 = M2s - p_.d2 * x[3] - p_.r2 * sat(x[3] / p_.coulomb_rate);
-    dx[0] = x[2];
-    dx[1] = x[3];
-    gyro_frame_accelerations(p_.gyro, w, x[0], x[1], x[2], x[3], M1, M2, dx[2], dx[3]);
+    const auto coulomb = [this](double alpha_rate, double beta_rate, double& F1, double& F2) {
+      F1 = p_.r1 * sat(alpha_rate / p_.coulomb_rate);
+      F2 = p_.r2 * sat(beta_rate / p_.coulomb_rate);
+    };
+    gyro_frame_derivative(p_.gyro, p_.fidelity, w, x, M1s, M2s, p_.d1, p_.d2, dx, coulomb);
   }
   void project(State&) const {}
 
   // (α', β') at time t [rad/s]: the state's (full) or the precession solution's.
   void rates(double t, const State& x, double& alpha_rate, double& beta_rate) const {
-    if (p_.fidelity == InstrumentFidelity::kFull) {
-      alpha_rate = x[2];
-      beta_rate = x[3];
-      return;
-    }
-    State dx;
-    derivative(t, x, dx);
-    alpha_rate = dx[0];
-    beta_rate = dx[1];
+    gyro_frame_rates(*this, p_.fidelity, t, x, alpha_rate, beta_rate);
   }
 
   // The erection sensor: tilt of the rotor axis from the apparent vertical (α − α_L, β − β_L) [rad].

@@ -45,7 +45,6 @@
 #include <cmath>
 
 #include "sim/models/gyro_in_rotating_frame.hpp"
-#include "sim/models/gyro_vertical.hpp"
 
 namespace gyrostab::models {
 
@@ -70,12 +69,8 @@ struct GyrocompassParams {
   InstrumentFidelity fidelity{InstrumentFidelity::kFull};
 
   const char* invalid_reason() const {
+    if (const char* why = gyro_frame_invalid_reason(gyro, fidelity, c, d1, d2)) return why;
     const auto fin = [](double v) { return std::isfinite(v); };
-    if (!(fin(gyro.H) && gyro.H > 0.0)) return "H must be finite and > 0";
-    if (fidelity == InstrumentFidelity::kFull && !(fin(gyro.A) && gyro.A > 0.0 && fin(gyro.B) && gyro.B > 0.0))
-      return "A, B must be finite and > 0 for the full form";
-    if (!(fin(c) && c >= 0.0)) return "c (pendulous moment) must be finite and >= 0";
-    if (!(fin(d1) && d1 >= 0.0 && fin(d2) && d2 >= 0.0)) return "d1, d2 must be finite and >= 0";
     if (!(fin(gravity) && gravity > 0.0)) return "gravity must be finite and > 0";
     if (!(fin(swing_inertia) && swing_inertia >= 0.0)) return "swing_inertia must be finite and >= 0";
     if (swing_inertia > 0.0 && !(c > 0.0))
@@ -128,29 +123,13 @@ class Gyrocompass {
       dx[5] = (-p_.c * x[4] + (p_.c / p_.gravity) * b * std::cos(phase)) / p_.swing_inertia;  // (13.31)
       M1 += -(p_.c / p_.gravity) * b * x[4] * std::sin(phase);                                 // (13.35)
     }
-    if (p_.fidelity == InstrumentFidelity::kPrecession) {
-      gyro_frame_precession_rates(p_.gyro, w, x[0], x[1], M1, M2, p_.d1, p_.d2, dx[0], dx[1]);
-      dx[2] = 0.0;
-      dx[3] = 0.0;
-      return;
-    }
-    dx[0] = x[2];
-    dx[1] = x[3];
-    gyro_frame_accelerations(p_.gyro, w, x[0], x[1], x[2], x[3], M1 - p_.d1 * x[2], M2 - p_.d2 * x[3], dx[2],
-                             dx[3]);
+    gyro_frame_derivative(p_.gyro, p_.fidelity, w, x, M1, M2, p_.d1, p_.d2, dx);
   }
   void project(State&) const {}
 
+  // (α', β') at time t [rad/s]: the state's (full) or the precession solution's.
   void rates(double t, const State& x, double& alpha_rate, double& beta_rate) const {
-    if (p_.fidelity == InstrumentFidelity::kFull) {
-      alpha_rate = x[2];
-      beta_rate = x[3];
-      return;
-    }
-    State dx;
-    derivative(t, x, dx);
-    alpha_rate = dx[0];
-    beta_rate = dx[1];
+    gyro_frame_rates(*this, p_.fidelity, t, x, alpha_rate, beta_rate);
   }
 
   // The level sensor: elevation of the rotor axis above the apparent horizon, β − β_L [rad].

@@ -19,10 +19,7 @@
 #include <array>
 #include <cmath>
 #include <complex>
-#include <cstdio>
 #include <memory>
-
-#include <Eigen/Eigenvalues>
 
 #include "firmware/app/gyro_vertical_controller.hpp"
 #include "firmware/platform/posix/monotonic_clock.hpp"
@@ -33,7 +30,12 @@
 #include "sim/random/seeded_rng.hpp"
 #include "sim/sensors/rate_integrating_gyro.hpp"
 #include "sim/sensors/sensor_noise.hpp"
+#include "tools/accuracy/half_step_window.hpp"
+#include "tools/devices/gyro_frame_scene.hpp"
+#include "tools/devices/manoeuvre_segment_log.hpp"
 #include "tools/devices/scene_device.hpp"
+#include "tools/devices/scene_run.hpp"
+#include "tools/devices/vehicle_frame_feed.hpp"
 #include "tools/devices/vehicle_motion_scene.hpp"
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/controller_report.hpp"
@@ -62,15 +64,13 @@ struct GvScene {
   firmware::GyroVerticalConfig controller;
 };
 
-struct SegmentRecord {
-  bool started{false}, ended{false}, cut_out{false};
-  double t_start{0.0}, t_end{0.0};         // [s]
+struct SegmentRecord : SegmentSpan {
+  bool cut_out{false};
   double alpha_start{0.0}, beta_start{0.0};  // [rad]
   double alpha_end{0.0}, beta_end{0.0};
   double alpha_L{0.0}, beta_L{0.0};  // apparent vertical at the segment's start (+1 tick)
   double turn_rate{0.0};             // Ω3 of the frame [rad/s]
   double indicator_sum{0.0}, true_rate_sum{0.0};
-  long samples{0};
 };
 
 class GyroVerticalDevice {
@@ -80,8 +80,8 @@ class GyroVerticalDevice {
         plant_(s.gyro),
         integ_(plant_),
         driver_(integ_, s.loop.tick_ns, s.loop.substeps),
-        vehicle_(make_vehicle(s.motion)),
-        corners_(s.motion),
+        feed_(s.motion, s.loop.tick_ns,
+              PlumbFrame{&motion::EarthVehicleSample::track, frame_forward_right_down, s.motion.earth.rotation_rate}),
         indicator_(s.turn_indicator),
         erection_noise_{sensors::SensorNoise({s.sensors.erection_noise_density, 0.0, 0.0}, s.loop.tick_s()),
                         sensors::SensorNoise({s.sensors.erection_noise_density, 0.0, 0.0}, s.loop.tick_s())},
@@ -89,15 +89,14 @@ class GyroVerticalDevice {
                     sensors::SensorNoise({s.sensors.rate_noise_density, 0.0, 0.0}, s.loop.tick_s())},
         rng_{random::SeededRng(s.loop.seed, kErection1Stream), random::SeededRng(s.loop.seed, kErection2Stream),
              random::SeededRng(s.loop.seed, kRate1Stream), random::SeededRng(s.loop.seed, kRate2Stream)},
-        controller_(std::make_unique<Controller>(s.controller)) {
+        controller_(std::make_unique<Controller>(s.controller)),
+        segments_(s.motion) {
     x_ = Model::make_state(s.alpha0, s.beta0);
-    current_ = frame(0);
-    plant_.inputs.frame.hold(current_);
-    const sensors::GyroCaseMotion m = case_motion(current_);
+    plant_.inputs.frame.hold(feed_.frame());
+    const sensors::GyroCaseMotion m = case_motion(feed_.frame());
     indicator_.reset_steady(m);
     case_ = m;
-    segment_ = segment_at(0);
-    begin_segment(segment_, 0.0);
+    begin_segment(segments_.current());
   }
 
   void sense(std::int64_t tick, msg::SensorFrame& f) {
@@ -111,7 +110,7 @@ class GyroVerticalDevice {
     f.gimbal_rate_rad_s[msg::kAxis1] = a_rate + rate_noise_[0].sample(rng_[2]);
     f.gimbal_rate_rad_s[msg::kAxis2] = b_rate + rate_noise_[1].sample(rng_[3]);
     f.carrier_rate_rad_s[msg::kYaw] = indicator_.indicated();
-    const double bank = models::apparent_vertical(current_.f).alpha_L;
+    const double bank = models::apparent_vertical(feed_.frame().f).alpha_L;
     f.carrier_angle_rad[msg::kRoll] = bank - x_[0];
     f.carrier_angle_rad[msg::kPitch] = -x_[1];
   }
@@ -121,59 +120,60 @@ class GyroVerticalDevice {
     plant_.inputs.M1 = cmd.gimbal_torque_Nm[msg::kAxis1];
     plant_.inputs.M2 = cmd.gimbal_torque_Nm[msg::kAxis2];
     if ((cmd.status & firmware::bit(firmware::LawStatusBit::kCorrectionCutOut)) != 0u) {
-      segments_[static_cast<std::size_t>(segment_)].cut_out = true;
+      segments_.current().cut_out = true;
     }
   }
 
   void advance(std::int64_t tick) {
-    const std::int64_t t1_ns = (tick + 1) * s_.loop.tick_ns;
-    const models::FrameSample next = frame_of(vehicle_.sample_left_ns(t1_ns));  // left limit at a corner
-    plant_.inputs.frame.t0 = static_cast<double>(tick) * s_.loop.tick_s();
-    plant_.inputs.frame.h = s_.loop.tick_s();
-    plant_.inputs.frame.s0 = current_;
-    plant_.inputs.frame.s1 = next;
+    feed_.begin_tick(tick, plant_.inputs.frame);
+    window_.before_tick(tick, x_, plant_.inputs);
     driver_.advance_tick(tick, x_);
-    const sensors::GyroCaseMotion m1 = case_motion(next);
+    window_.after_tick(tick, x_);
+    const sensors::GyroCaseMotion m1 = case_motion(feed_.next_frame());
     indicator_.update(case_, m1);
     case_ = m1;
-    current_ = corners_.corner_at(t1_ns) ? frame(t1_ns) : next;
-    plant_.inputs.frame.hold(current_);
+    feed_.end_tick(plant_.inputs.frame);
+    const models::FrameSample& w = feed_.frame();
     ticks_ = tick + 1;
     const double t1 = static_cast<double>(ticks_) * s_.loop.tick_s();
     alpha_peak_ = std::max(alpha_peak_, std::fabs(x_[0]));
-    SegmentRecord& r = segments_[static_cast<std::size_t>(segment_)];
+    SegmentRecord& r = segments_.current();
     if (!r.samples) {
-      const models::ApparentVertical L = models::apparent_vertical(current_.f);
+      const models::ApparentVertical L = models::apparent_vertical(w.f);
       r.alpha_L = L.alpha_L;
       r.beta_L = L.beta_L;
-      r.turn_rate = current_.Omega.z();
+      r.turn_rate = w.Omega.z();
     }
     r.indicator_sum += indicator_.indicated();
-    r.true_rate_sum += current_.Omega.z();
+    r.true_rate_sum += w.Omega.z();
     ++r.samples;
-    const int seg = segment_at(t1_ns);
-    if (seg != segment_) {
-      end_segment(segment_, t1);
-      segment_ = seg;
-      begin_segment(seg, t1);
-    }
+    segments_.advance(ticks_ * s_.loop.tick_ns, t1, [this](SegmentRecord& e) { end_segment(e); },
+                      [this](SegmentRecord& b) { begin_segment(b); });
   }
 
   bool finite() const { return x_.allFinite(); }
+
+  // report.json "error_estimate": the half-step comparison (the frame's motion is interpolated within the tick
+  // exactly as in the run, so the re-integration at half the step sees the same forcing).
+  nlohmann::json error_estimate() const {
+    const auto apply = [](auto& p, const auto& in) { p.inputs = in; };
+    return window_.template estimate<dynamics::Rk4>(plant_, apply, s_.loop.tick_ns, s_.loop.substeps, 4, {"alpha_rad", "beta_rad", "alpha_rate_rad_s", "beta_rate_rad_s"},
+                                                    "none watched: vehicle motion, correction torques and friction act");
+  }
 
   static std::vector<std::string> columns() {
     return {"alpha_rad",       "beta_rad",        "alpha_L_rad", "beta_L_rad", "M1_Nm", "M2_Nm",
             "turn_rate_rad_s", "turn_indicator_rad_s", "status_bits"};
   }
   void record(double* row) const {
-    const models::ApparentVertical L = models::apparent_vertical(current_.f);
+    const models::ApparentVertical L = models::apparent_vertical(feed_.frame().f);
     row[0] = x_[0];
     row[1] = x_[1];
     row[2] = L.alpha_L;
     row[3] = L.beta_L;
     row[4] = last_.gimbal_torque_Nm[msg::kAxis1];
     row[5] = last_.gimbal_torque_Nm[msg::kAxis2];
-    row[6] = current_.Omega.z();
+    row[6] = feed_.frame().Omega.z();
     row[7] = indicator_.indicated();
     row[8] = static_cast<double>(last_.status);
   }
@@ -200,19 +200,14 @@ class GyroVerticalDevice {
     if (s_.gyro.fidelity == models::InstrumentFidelity::kFull) {
       f["nutation_frequency_rad_s"] = models::nutation_frequency(s_.gyro.gyro);
     }
-    nlohmann::json segs = nlohmann::json::array();
-    for (int i = 0; i <= s_.motion.count; ++i) {
-      const SegmentRecord& r = segments_[static_cast<std::size_t>(i)];
-      if (!r.started || r.samples == 0) continue;
-      nlohmann::json j{{"segment", i + 1 <= s_.motion.count ? i + 1 : 0},  // 0: the final cruise
-                       {"t_start_s", r.t_start},
-                       {"t_end_s", r.ended ? r.t_end : static_cast<double>(ticks_) * s_.loop.tick_s()},
-                       {"turn_rate_rad_s", r.turn_rate},
-                       {"alpha_L_rad", r.alpha_L},
-                       {"beta_L_rad", r.beta_L},
-                       {"correction_cut_out", r.cut_out},
-                       {"alpha_end_rad", r.ended ? r.alpha_end : x_[0]},
-                       {"beta_end_rad", r.ended ? r.beta_end : x_[1]}};
+    const double t_now = static_cast<double>(ticks_) * s_.loop.tick_s();
+    f["segments"] = segments_.to_json(t_now, [&](nlohmann::json& j, const SegmentRecord& r) {
+      j["turn_rate_rad_s"] = r.turn_rate;
+      j["alpha_L_rad"] = r.alpha_L;
+      j["beta_L_rad"] = r.beta_L;
+      j["correction_cut_out"] = r.cut_out;
+      j["alpha_end_rad"] = r.ended ? r.alpha_end : x_[0];
+      j["beta_end_rad"] = r.ended ? r.beta_end : x_[1];
       const double mean_true = r.true_rate_sum / static_cast<double>(r.samples);
       j["turn_indicator_over_true"] =
           std::fabs(mean_true) > 1e-6 ? nlohmann::json(r.indicator_sum / r.true_rate_sum) : nlohmann::json(nullptr);
@@ -222,16 +217,14 @@ class GyroVerticalDevice {
         const double d = r.cut_out ? 0.0 : delta, wP = r.cut_out ? omega_P_plant : omega_P;
         const C k(d, r.turn_rate + wP);
         const C z_eq = C(d, wP) * C(r.alpha_L, r.beta_L) / k;
-        const double T = (r.ended ? r.t_end : static_cast<double>(ticks_) * s_.loop.tick_s()) - r.t_start;
+        const double T = (r.ended ? r.t_end : t_now) - r.t_start;
         const C z = z_eq + (C(r.alpha_start, r.beta_start) - z_eq) * std::exp(-k * T);
         j["alpha_G_rad"] = z_eq.real();  // (12.47) in a steady turn
         j["beta_G_rad"] = z_eq.imag();
         j["alpha_book_end_rad"] = z.real();
         j["beta_book_end_rad"] = z.imag();
       }
-      segs.push_back(j);
-    }
-    f["segments"] = segs;
+    });
     return f;
   }
 
@@ -247,29 +240,11 @@ class GyroVerticalDevice {
     m.Omega2_dot = w.Omega_dot.x();
     return m;
   }
-  // The track frame at t_ns, with the plumb line as the vertical at rest (remove_centrifugal_tilt).
-  models::FrameSample frame(std::int64_t t_ns) const { return frame_of(vehicle_.sample_ns(t_ns)); }
-  models::FrameSample frame_of(const motion::EarthVehicleSample& v) const {
-    motion::Trihedron T = v.track;
-    remove_centrifugal_tilt(v, s_.motion.earth.rotation_rate, T);
-    return frame_forward_right_down(T);
-  }
-  int segment_at(std::int64_t t_ns) const {
-    int k = 0;
-    while (k < s_.motion.count && t_ns >= segment_start_ns(s_.motion, k + 1)) ++k;
-    return k;
-  }
-  void begin_segment(int i, double t) {
-    SegmentRecord& r = segments_[static_cast<std::size_t>(i)];
-    r.started = true;
-    r.t_start = t;
+  void begin_segment(SegmentRecord& r) const {
     r.alpha_start = x_[0];
     r.beta_start = x_[1];
   }
-  void end_segment(int i, double t) {
-    SegmentRecord& r = segments_[static_cast<std::size_t>(i)];
-    r.ended = true;
-    r.t_end = t;
+  void end_segment(SegmentRecord& r) const {
     r.alpha_end = x_[0];
     r.beta_end = x_[1];
   }
@@ -279,31 +254,27 @@ class GyroVerticalDevice {
   dynamics::Rk4<Model> integ_;
   dynamics::SubstepDriver<dynamics::Rk4<Model>> driver_;
   Model::State x_;
-  VehicleGenerator vehicle_;
-  CornerClock corners_;
-  models::FrameSample current_{};
+  // report.json "error_estimate" (tools/accuracy/half_step_window.hpp): 1000 ticks from the run's middle.
+  accuracy::HalfStepWindow<Model, std::remove_cvref_t<decltype(std::declval<Model&>().inputs)>> window_{s_.loop.ticks() / 2, 1000};
+  VehicleFrameFeed<PlumbFrame> feed_;  // the track frame
   sensors::SingleAxisGyro indicator_;
   sensors::GyroCaseMotion case_{};
   std::array<sensors::SensorNoise, 2> erection_noise_, rate_noise_;
   std::array<random::SeededRng, 4> rng_;
   std::unique_ptr<Controller> controller_;
   msg::ActuatorFrame last_{};
-  std::array<SegmentRecord, kMaxVehicleSegments + 1> segments_{};
-  int segment_{0};
+  ManoeuvreSegmentLog<SegmentRecord> segments_;
   double alpha_peak_{0.0};
   std::int64_t ticks_{0};
 };
 
 bool read_scene(SceneReader& r, GvScene& s) {
-  s.loop = read_loop_config(r, "rk4", {"rk4"});
-  s.motion = read_vehicle_motion(r, 50.0);
+  read_gyro_frame_scene_head(r,
+                             {2e-3, "full (10.22) or precession (12.35) form",
+                              "inertia about gimbal axis 1 [kg m²]",
+                              "inertia about gimbal axis 2 [kg m²]"},
+                             s);
   auto& g = s.gyro;
-  const std::string fidelity =
-      r.choice("gyro", "fidelity", "full", {"full", "precession"}, "full (10.22) or precession (12.35) form");
-  g.fidelity = fidelity == "precession" ? models::InstrumentFidelity::kPrecession : models::InstrumentFidelity::kFull;
-  g.gyro.H = r.required("gyro", "H", Range::positive(), "spin momentum [N m s]");
-  g.gyro.A = r.number("gyro", "A", 2e-3, Range::positive(), "inertia about gimbal axis 1 [kg m²]");
-  g.gyro.B = r.number("gyro", "B", 2e-3, Range::positive(), "inertia about gimbal axis 2 [kg m²]");
   g.c = r.number("gyro", "c", 0.0, Range::non_negative(), "pendulous moment m g s, (12.35) row 1 [N m/rad]");
   g.d1 = r.number("gyro", "d1", 0.0, Range::non_negative(), "viscous bearing friction axis 1 [N m s/rad]");
   g.d2 = r.number("gyro", "d2", 0.0, Range::non_negative(), "viscous bearing friction axis 2 [N m s/rad]");
@@ -359,28 +330,10 @@ bool read_scene(SceneReader& r, GvScene& s) {
     if (g.fidelity == models::InstrumentFidelity::kFull) {
       // The linear rows close a loop whose nutation the precession theory does not see (model header):
       // refuse a configuration whose linearization at rest (Ω = 0) has a growing mode.
-      const double A = g.gyro.A, B = g.gyro.B, H = g.gyro.H;
-      Eigen::Matrix4d J;
-      J << 0, 0, 1, 0,  //
-          0, 0, 0, 1,   //
-          -(g.c + l.c1) / A, -l.f1 / A, -(g.d1 + l.d1) / A, -H / A,  //
-          l.f2 / B, -(g.c + l.c2) / B, H / B, -(g.d2 + l.d2) / B;
-      const Eigen::EigenSolver<Eigen::Matrix4d> es(J, false);
-      double growth = -1e300;
-      for (int i = 0; i < 4; ++i) growth = std::max(growth, es.eigenvalues()[i].real());
-      if (growth > 0.0) {
-        char msg[256];
-        std::snprintf(msg, sizeof msg,
-                      "the correction makes the nutation grow at %.3g /s (a circulatory force, model header): "
-                      "bearing damping d1/A, d2/B must exceed about f/H = %.3g /s",
-                      growth, l.f1 / H);
-        r.fail("gyro", "d1", msg);
-      }
-      const double h_sub = s.loop.tick_s() / s.loop.substeps;
-      Model m(g);
-      const dynamics::StepCheck step =
-          dynamics::check_step(dynamics::Method::kRk4, dynamics::fastest_mode(m, 0.0, Model::make_state(0, 0)), h_sub);
-      if (!step.ok) r.fail("loop", "plant_substeps", step.message);
+      refuse_growing_nutation(r, g.gyro, {g.c + l.c1, l.f1, -l.f2, g.c + l.c2}, g.d1 + l.d1, g.d2 + l.d2,
+                              "the correction",
+                              "bearing damping d1/A, d2/B must exceed about f/H = " + format_3g(l.f1 / g.gyro.H) + " /s");
+      refuse_long_rk4_substep(r, s.loop, Model(g));
     }
   }
   r.finish();
@@ -390,11 +343,7 @@ bool read_scene(SceneReader& r, GvScene& s) {
 }  // namespace
 
 int run_gyro_vertical(SceneReader& reader, const RunRequest& req) {
-  auto scene = std::make_unique<GvScene>();
-  if (!read_scene(reader, *scene)) return 2;
-  if (req.check_only) return 0;
-  auto device = std::make_unique<GyroVerticalDevice>(*scene);
-  return run_device(*device, scene->loop, req);
+  return run_scene<GyroVerticalDevice>(reader, req, read_scene);
 }
 
 }  // namespace gyrostab::tools

@@ -17,12 +17,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <memory>
 #include <numbers>
-
-#include <Eigen/Eigenvalues>
 
 #include "firmware/app/gyrocompass_controller.hpp"
 #include "firmware/platform/posix/monotonic_clock.hpp"
@@ -33,7 +30,12 @@
 #include "sim/models/gyrocompass.hpp"
 #include "sim/random/seeded_rng.hpp"
 #include "sim/sensors/sensor_noise.hpp"
+#include "tools/accuracy/half_step_window.hpp"
+#include "tools/devices/gyro_frame_scene.hpp"
+#include "tools/devices/manoeuvre_segment_log.hpp"
 #include "tools/devices/scene_device.hpp"
+#include "tools/devices/scene_run.hpp"
+#include "tools/devices/vehicle_frame_feed.hpp"
 #include "tools/devices/vehicle_motion_scene.hpp"
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/controller_report.hpp"
@@ -61,14 +63,11 @@ struct GcScene {
   double extrema_hysteresis{1e-5};  // [rad]
 };
 
-struct CompassSegment {
-  bool started{false}, ended{false};
-  double t_start{0.0}, t_end{0.0};
+struct CompassSegment : SegmentSpan {
   double alpha_end{0.0}, alpha_eq_end{0.0}, speed_dev_end{0.0}, latitude_end{0.0};
   double v_north_end{0.0}, v_east_end{0.0}, heading_end{0.0};
   double deviation_max{0.0};             // max |α − α_eq(t)| [rad]
   double alpha_sum{0.0}, alpha_eq_sum{0.0};  // for the rolling error
-  long samples{0};
 };
 
 class GyrocompassDevice {
@@ -78,25 +77,23 @@ class GyrocompassDevice {
         plant_(s.gyro),
         integ_(plant_),
         driver_(integ_, s.loop.tick_ns, s.loop.substeps),
-        vehicle_(make_vehicle(s.motion)),
-        corners_(s.motion),
+        feed_(s.motion, s.loop.tick_ns,
+              PlumbFrame{&motion::EarthVehicleSample::geographic, frame_up_east_north, s.motion.earth.rotation_rate}),
         level_noise_({s.level_noise_density, 0.0, 0.0}, s.loop.tick_s()),
         rng_level_(s.loop.seed, kLevelStream),
         controller_(std::make_unique<Controller>(s.controller)),
         alpha_extrema_(s.extrema_hysteresis),
-        beta_extrema_(s.extrema_hysteresis) {
-    sample(0, current_, current_motion_);
-    plant_.inputs.frame.hold(current_);
-    plant_.inputs.heading = current_motion_.heading;
+        beta_extrema_(s.extrema_hysteresis),
+        segments_(s.motion) {
+    plant_.inputs.frame.hold(feed_.frame());
+    plant_.inputs.heading = feed_.motion().heading;
     x_ = Model::make_state(s.alpha0, s.beta0);
     if (s.start_settled) {
       double a, b;
-      equilibrium(current_, a, b);
+      equilibrium(feed_.frame(), a, b);
       x_[0] += a;
       x_[1] += b;
     }
-    segment_ = segment_at(0);
-    begin_segment(segment_, 0.0);
   }
 
   void sense(std::int64_t tick, msg::SensorFrame& f) {
@@ -105,10 +102,11 @@ class GyrocompassDevice {
     double a_rate, b_rate;
     plant_.rates(t, x_, a_rate, b_rate);
     f.gimbal_angle_rad[msg::kAxis2] = plant_.level_signal(t, x_) + level_noise_.sample(rng_level_);
-    f.gimbal_angle_rad[msg::kAxis1] = std::remainder(-(current_motion_.heading + x_[0]), 2.0 * kPi);
+    const double heading = feed_.motion().heading;
+    f.gimbal_angle_rad[msg::kAxis1] = std::remainder(-(heading + x_[0]), 2.0 * kPi);
     f.gimbal_rate_rad_s[msg::kAxis1] = a_rate;
     f.gimbal_rate_rad_s[msg::kAxis2] = b_rate;
-    f.carrier_angle_rad[msg::kYaw] = std::remainder(current_motion_.heading + x_[0], 2.0 * kPi);
+    f.carrier_angle_rad[msg::kYaw] = std::remainder(heading + x_[0], 2.0 * kPi);
   }
 
   void actuate(const msg::ActuatorFrame& cmd) {
@@ -118,44 +116,37 @@ class GyrocompassDevice {
   }
 
   void advance(std::int64_t tick) {
-    const std::int64_t t1_ns = (tick + 1) * s_.loop.tick_ns;
-    models::FrameSample next;
-    motion::EarthVehicleSample next_motion = vehicle_.sample_left_ns(t1_ns);  // left limit at a corner
-    frame_of(next_motion, next);
-    plant_.inputs.frame.t0 = static_cast<double>(tick) * s_.loop.tick_s();
-    plant_.inputs.frame.h = s_.loop.tick_s();
-    plant_.inputs.frame.s0 = current_;
-    plant_.inputs.frame.s1 = next;
+    feed_.begin_tick(tick, plant_.inputs.frame);
+    window_.before_tick(tick, x_, plant_.inputs);
     driver_.advance_tick(tick, x_);
-    if (corners_.corner_at(t1_ns)) {
-      sample(t1_ns, current_, current_motion_);
-    } else {
-      current_ = next;
-      current_motion_ = next_motion;
-    }
-    plant_.inputs.frame.hold(current_);
-    plant_.inputs.heading = current_motion_.heading;
+    window_.after_tick(tick, x_);
+    feed_.end_tick(plant_.inputs.frame);
+    plant_.inputs.heading = feed_.motion().heading;
     ticks_ = tick + 1;
     const double t1 = static_cast<double>(ticks_) * s_.loop.tick_s();
     if (ticks_ % s_.extrema_every_ticks == 0) {
       alpha_extrema_.add(t1, x_[0]);
       beta_extrema_.add(t1, x_[1]);
     }
-    const double a_eq = book_alpha_eq(current_);
-    CompassSegment& r = segments_[static_cast<std::size_t>(segment_)];
+    const double a_eq = book_alpha_eq(feed_.frame());
+    CompassSegment& r = segments_.current();
     r.deviation_max = std::max(r.deviation_max, std::fabs(x_[0] - a_eq));
     r.alpha_sum += x_[0];
     r.alpha_eq_sum += a_eq;
     ++r.samples;
-    const int seg = segment_at(t1_ns);
-    if (seg != segment_) {
-      end_segment(segment_, t1);
-      segment_ = seg;
-      begin_segment(seg, t1);
-    }
+    segments_.advance(ticks_ * s_.loop.tick_ns, t1, [this](CompassSegment& e) { end_segment(e); },
+                      [](CompassSegment&) {});
   }
 
   bool finite() const { return x_.allFinite(); }
+
+  // report.json "error_estimate": the half-step comparison (the frame's motion is interpolated within the tick
+  // exactly as in the run, so the re-integration at half the step sees the same forcing).
+  nlohmann::json error_estimate() const {
+    const auto apply = [](auto& p, const auto& in) { p.inputs = in; };
+    return window_.template estimate<dynamics::Rk4>(plant_, apply, s_.loop.tick_ns, s_.loop.substeps, 4, {"alpha_rad", "beta_rad", "alpha_rate_rad_s", "beta_rate_rad_s", "gamma_rad", "gamma_rate_rad_s"},
+                                                    "none watched: ship motion, damping torque and friction act");
+  }
 
   static std::vector<std::string> columns() {
     return {"alpha_rad", "beta_rad", "alpha_eq_rad", "level_rad", "M1_Nm", "M2_Nm",
@@ -165,12 +156,12 @@ class GyrocompassDevice {
     const double t = static_cast<double>(ticks_) * s_.loop.tick_s();
     row[0] = x_[0];
     row[1] = x_[1];
-    row[2] = book_alpha_eq(current_);
+    row[2] = book_alpha_eq(feed_.frame());
     row[3] = plant_.level_signal(t, x_);
     row[4] = last_.gimbal_torque_Nm[msg::kAxis1];
     row[5] = last_.gimbal_torque_Nm[msg::kAxis2];
-    row[6] = current_motion_.latitude / kDeg;
-    row[7] = current_motion_.heading / kDeg;
+    row[6] = feed_.motion().latitude / kDeg;
+    row[7] = feed_.motion().heading / kDeg;
     row[8] = x_[4];
     row[9] = static_cast<double>(last_.status);
   }
@@ -181,7 +172,8 @@ class GyrocompassDevice {
   nlohmann::json figures() const {
     const double H = s_.gyro.gyro.H, c_total = s_.gyro.c + s_.controller.law.c_e, f_law = s_.controller.law.f;
     const double we = s_.motion.earth.rotation_rate, g = s_.motion.earth.gravity, R = s_.motion.earth.radius;
-    const double lat = current_motion_.latitude;
+    const motion::EarthVehicleSample& now = feed_.motion();
+    const double lat = now.latitude;
     models::GyrocompassTheory th{H, c_total, f_law, we, lat};
     nlohmann::json f{{"ticks", ticks_},
                      {"omega_c_s", c_total / H},
@@ -217,30 +209,24 @@ class GyrocompassDevice {
     }
     const int nb = beta_extrema_.count();
     f["beta_eq_measured_rad"] = nb >= 3 ? nlohmann::json(beta_extrema_.equilibrium(nb - 3)) : nlohmann::json(nullptr);
-    nlohmann::json segs = nlohmann::json::array();
-    for (int i = 0; i <= s_.motion.count; ++i) {
-      const CompassSegment& r = segments_[static_cast<std::size_t>(i)];
-      if (!r.started || r.samples == 0) continue;
+    const double t_now = static_cast<double>(ticks_) * s_.loop.tick_s();
+    f["segments"] = segments_.to_json(t_now, [&](nlohmann::json& j, const CompassSegment& r) {
       const bool ended = r.ended;
-      segs.push_back({{"segment", i + 1 <= s_.motion.count ? i + 1 : 0},
-                      {"t_start_s", r.t_start},
-                      {"t_end_s", ended ? r.t_end : static_cast<double>(ticks_) * s_.loop.tick_s()},
-                      {"latitude_end_deg", (ended ? r.latitude_end : lat) / kDeg},
-                      {"heading_end_deg", (ended ? r.heading_end : current_motion_.heading) / kDeg},
-                      {"v_north_end_m_s", ended ? r.v_north_end : current_motion_.v_north},
-                      {"v_east_end_m_s", ended ? r.v_east_end : current_motion_.v_east},
-                      {"alpha_end_rad", ended ? r.alpha_end : x_[0]},
-                      {"alpha_eq_book_end_rad", ended ? r.alpha_eq_end : book_alpha_eq(current_)},
-                      {"speed_deviation_book_13_23_rad", ended ? r.speed_dev_end : speed_dev(current_motion_)},
-                      {"deviation_from_equilibrium_max_rad", r.deviation_max},
-                      {"alpha_mean_minus_eq_rad", (r.alpha_sum - r.alpha_eq_sum) / static_cast<double>(r.samples)}});
-    }
-    f["segments"] = segs;
+      j["latitude_end_deg"] = (ended ? r.latitude_end : lat) / kDeg;
+      j["heading_end_deg"] = (ended ? r.heading_end : now.heading) / kDeg;
+      j["v_north_end_m_s"] = ended ? r.v_north_end : now.v_north;
+      j["v_east_end_m_s"] = ended ? r.v_east_end : now.v_east;
+      j["alpha_end_rad"] = ended ? r.alpha_end : x_[0];
+      j["alpha_eq_book_end_rad"] = ended ? r.alpha_eq_end : book_alpha_eq(feed_.frame());
+      j["speed_deviation_book_13_23_rad"] = ended ? r.speed_dev_end : speed_dev(now);
+      j["deviation_from_equilibrium_max_rad"] = r.deviation_max;
+      j["alpha_mean_minus_eq_rad"] = (r.alpha_sum - r.alpha_eq_sum) / static_cast<double>(r.samples);
+    });
     if (s_.gyro.swing_inertia > 0.0) {
       // (13.38) with ψ of the final state.
       const models::ShipRoll& roll = s_.gyro.roll;
       const double wg2 = s_.gyro.c / s_.gyro.swing_inertia, ws2 = roll.omega() * roll.omega(), b0 = roll.b0();
-      const double gs = s_.gyro.c, psi = current_motion_.heading, gg = s_.gyro.gravity;
+      const double gs = s_.gyro.c, psi = now.heading, gg = s_.gyro.gravity;
       const double num = -gs * b0 * b0 * wg2 * std::sin(2.0 * psi);
       const double den = 4.0 * gg * gg * H * we * std::cos(lat) * (wg2 - ws2) + 2.0 * gs * b0 * b0 * wg2 * std::cos(2.0 * psi);
       f["rolling_error_book_13_38_rad"] = num / den;
@@ -251,15 +237,6 @@ class GyrocompassDevice {
   }
 
  private:
-  void sample(std::int64_t t_ns, models::FrameSample& frame, motion::EarthVehicleSample& m) const {
-    m = vehicle_.sample_ns(t_ns);
-    frame_of(m, frame);
-  }
-  void frame_of(const motion::EarthVehicleSample& m, models::FrameSample& frame) const {
-    motion::Trihedron G = m.geographic;
-    remove_centrifugal_tilt(m, s_.motion.earth.rotation_rate, G);
-    frame = frame_up_east_north(G);
-  }
   // The model's steady state for constant frame rates and level (precession form, M1 = −f β_lvl,
   // M2 = −c_total β_lvl): β0 = (HΩ1 + c β_L)/(HΩ3 + c), α0 = −(HΩ2 + f(β0 − β_L))/(HΩ3).
   void equilibrium(const models::FrameSample& w, double& alpha, double& beta) const {
@@ -279,27 +256,15 @@ class GyrocompassDevice {
     return models::speed_deviation(m.v_north, m.v_east, m.latitude, s_.motion.earth.radius,
                                    s_.motion.earth.rotation_rate);
   }
-  int segment_at(std::int64_t t_ns) const {
-    int k = 0;
-    while (k < s_.motion.count && t_ns >= segment_start_ns(s_.motion, k + 1)) ++k;
-    return k;
-  }
-  void begin_segment(int i, double t) {
-    CompassSegment& r = segments_[static_cast<std::size_t>(i)];
-    r.started = true;
-    r.t_start = t;
-  }
-  void end_segment(int i, double t) {
-    CompassSegment& r = segments_[static_cast<std::size_t>(i)];
-    r.ended = true;
-    r.t_end = t;
+  void end_segment(CompassSegment& r) const {
+    const motion::EarthVehicleSample& m = feed_.motion();
     r.alpha_end = x_[0];
-    r.alpha_eq_end = book_alpha_eq(current_);
-    r.speed_dev_end = speed_dev(current_motion_);
-    r.latitude_end = current_motion_.latitude;
-    r.heading_end = current_motion_.heading;
-    r.v_north_end = current_motion_.v_north;
-    r.v_east_end = current_motion_.v_east;
+    r.alpha_eq_end = book_alpha_eq(feed_.frame());
+    r.speed_dev_end = speed_dev(m);
+    r.latitude_end = m.latitude;
+    r.heading_end = m.heading;
+    r.v_north_end = m.v_north;
+    r.v_east_end = m.v_east;
   }
 
   const GcScene& s_;
@@ -307,31 +272,25 @@ class GyrocompassDevice {
   dynamics::Rk4<Model> integ_;
   dynamics::SubstepDriver<dynamics::Rk4<Model>> driver_;
   Model::State x_;
-  VehicleGenerator vehicle_;
-  CornerClock corners_;
-  models::FrameSample current_{};
-  motion::EarthVehicleSample current_motion_{};
+  // report.json "error_estimate" (tools/accuracy/half_step_window.hpp): 1000 ticks from the run's middle.
+  accuracy::HalfStepWindow<Model, std::remove_cvref_t<decltype(std::declval<Model&>().inputs)>> window_{s_.loop.ticks() / 2, 1000};
+  VehicleFrameFeed<PlumbFrame> feed_;  // the geographic frame
   sensors::SensorNoise level_noise_;
   random::SeededRng rng_level_;
   std::unique_ptr<Controller> controller_;
   msg::ActuatorFrame last_{};
   analysis::ExtremaMeter<64> alpha_extrema_, beta_extrema_;
-  std::array<CompassSegment, kMaxVehicleSegments + 1> segments_{};
-  int segment_{0};
+  ManoeuvreSegmentLog<CompassSegment> segments_;
   std::int64_t ticks_{0};
 };
 
 bool read_scene(SceneReader& r, GcScene& s) {
-  s.loop = read_loop_config(r, "rk4", {"rk4"});
-  s.motion = read_vehicle_motion(r, 50.0);
+  read_gyro_frame_scene_head(r,
+                             {0.05, "full (13.7) or precession (13.10) form",
+                              "inertia about the vertical axis 1 [kg m²]",
+                              "inertia about the east axis 2 [kg m²]"},
+                             s);
   auto& g = s.gyro;
-  g.fidelity = r.choice("gyro", "fidelity", "full", {"full", "precession"}, "full (13.7) or precession (13.10) form") ==
-                       "precession"
-                   ? models::InstrumentFidelity::kPrecession
-                   : models::InstrumentFidelity::kFull;
-  g.gyro.H = r.required("gyro", "H", Range::positive(), "spin momentum [N m s]");
-  g.gyro.A = r.number("gyro", "A", 0.05, Range::positive(), "inertia about the vertical axis 1 [kg m²]");
-  g.gyro.B = r.number("gyro", "B", 0.05, Range::positive(), "inertia about the east axis 2 [kg m²]");
   g.c = r.number("gyro", "c", 0.0, Range::non_negative(), "mechanical pendulous moment G s [N m/rad]");
   g.d1 = r.number("gyro", "d1", 0.0, Range::non_negative(), "viscous damping about the vertical [N m s/rad]");
   g.d2 = r.number("gyro", "d2", g.d1, Range::non_negative(), "viscous damping about the east axis [N m s/rad]");
@@ -394,31 +353,15 @@ bool read_scene(SceneReader& r, GcScene& s) {
     if (g.fidelity == models::InstrumentFidelity::kFull) {
       // Closed-loop linearization at the start latitude at rest: the damping torque −f β is circulatory
       // and can make the nutation grow (model header).
-      const double A = g.gyro.A, B = g.gyro.B, H = g.gyro.H, wh = we * std::cos(s.motion.start.latitude);
-      Eigen::Matrix4d J;
-      J << 0, 0, 1, 0,  //
-          0, 0, 0, 1,   //
-          -H * wh / A, -l.f / A, -g.d1 / A, -H / A,  //
-          0.0, -(H * wh + g.c + l.c_e) / B, H / B, -g.d2 / B;
-      const Eigen::EigenSolver<Eigen::Matrix4d> es(J, false);
-      double growth = -1e300;
-      for (int i = 0; i < 4; ++i) growth = std::max(growth, es.eigenvalues()[i].real());
-      if (growth > 0.0) {
-        char msg[256];
-        std::snprintf(msg, sizeof msg,
-                      "the damping torque makes the nutation grow at %.3g /s (a circulatory force, model "
-                      "header): give the sphere viscous damping d1, d2 (d/A well above f/H = %.3g /s)",
-                      growth, l.f / H);
-        r.fail("gyro", "d1", msg);
-      }
+      const double H = g.gyro.H, wh = we * std::cos(s.motion.start.latitude);
+      refuse_growing_nutation(r, g.gyro, {H * wh, l.f, 0.0, H * wh + g.c + l.c_e}, g.d1, g.d2, "the damping torque",
+                              "give the sphere viscous damping d1, d2 (d/A well above f/H = " + format_3g(l.f / H) +
+                                  " /s)");
     }
-    const double h_sub = s.loop.tick_s() / s.loop.substeps;
     Model m(g);
     m.inputs.frame.hold({dynamics::Vec3(we * std::sin(design_lat), 0.0, we * std::cos(design_lat)),
                          dynamics::Vec3::Zero(), dynamics::Vec3(s.motion.earth.gravity, 0.0, 0.0)});
-    const dynamics::StepCheck step =
-        dynamics::check_step(dynamics::Method::kRk4, dynamics::fastest_mode(m, 0.0, Model::make_state(0, 0)), h_sub);
-    if (!step.ok) r.fail("loop", "plant_substeps", step.message);
+    refuse_long_rk4_substep(r, s.loop, m);
   }
   r.finish();
   return r.ok();
@@ -427,11 +370,7 @@ bool read_scene(SceneReader& r, GcScene& s) {
 }  // namespace
 
 int run_gyrocompass(SceneReader& reader, const RunRequest& req) {
-  auto scene = std::make_unique<GcScene>();
-  if (!read_scene(reader, *scene)) return 2;
-  if (req.check_only) return 0;
-  auto device = std::make_unique<GyrocompassDevice>(*scene);
-  return run_device(*device, scene->loop, req);
+  return run_scene<GyrocompassDevice>(reader, req, read_scene);
 }
 
 }  // namespace gyrostab::tools

@@ -28,7 +28,10 @@
 #include "sim/models/inertial_platform.hpp"
 #include "sim/random/seeded_rng.hpp"
 #include "sim/sensors/sensor_noise.hpp"
+#include "tools/accuracy/half_step_window.hpp"
 #include "tools/devices/scene_device.hpp"
+#include "tools/devices/scene_run.hpp"
+#include "tools/devices/vehicle_frame_feed.hpp"
 #include "tools/devices/vehicle_motion_scene.hpp"
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/controller_report.hpp"
@@ -136,15 +139,13 @@ class PlatformDevice {
         plant_(Plant::make(s)),
         integ_(plant_),
         driver_(integ_, s.loop.tick_ns, s.loop.substeps),
-        vehicle_(make_vehicle(s.motion)),
-        corners_(s.motion),
+        feed_(s.motion, s.loop.tick_ns, &Plant::frame),
         noise_{sensors::SensorNoise({s.accel_noise_density, 0.0, 0.0}, s.loop.tick_s()),
                sensors::SensorNoise({s.accel_noise_density, 0.0, 0.0}, s.loop.tick_s())},
         rng_{random::SeededRng(s.loop.seed, kAccel1Stream), random::SeededRng(s.loop.seed, kAccel2Stream)},
         controller_(std::make_unique<Controller>(s.controller)) {
-    current_ = Plant::frame(vehicle_.sample_ns(0));
-    plant_.inputs.frame.hold(current_);
-    x_ = Plant::initial(s, current_);
+    plant_.inputs.frame.hold(feed_.frame());
+    x_ = Plant::initial(s, feed_.frame());
     for (ChannelStats& c : stats_) c.extrema = analysis::ExtremaMeter<64>(s.extrema_hysteresis);
     Plant::apparent(plant_, 0.0, x_, theta_start_);
     theta_mean_[0] = theta_start_[0];
@@ -171,22 +172,16 @@ class PlatformDevice {
   }
 
   void advance(std::int64_t tick) {
-    const std::int64_t t1_ns = (tick + 1) * s_.loop.tick_ns;
-    const models::FrameSample next = Plant::frame(vehicle_.sample_left_ns(t1_ns));  // left limit at a corner
-    plant_.inputs.frame.t0 = static_cast<double>(tick) * s_.loop.tick_s();
-    plant_.inputs.frame.h = s_.loop.tick_s();
-    plant_.inputs.frame.s0 = current_;
-    plant_.inputs.frame.s1 = next;
+    feed_.begin_tick(tick, plant_.inputs.frame);
+    window_.before_tick(tick, x_, plant_.inputs);
     driver_.advance_tick(tick, x_);
+    window_.after_tick(tick, x_);
     // The tick's mean apparent tilt by the trapezoid between its start (right limit) and its end (left
     // limit): exact for the frame's linear motion within the tick, O(T²) in the platform's own.
     double theta_end[2];
     Plant::apparent(plant_, plant_.inputs.frame.t0 + plant_.inputs.frame.h, x_, theta_end);
     for (int i = 0; i < 2; ++i) theta_mean_[i] = 0.5 * (theta_start_[i] + theta_end[i]);
-    const bool corner = corners_.corner_at(t1_ns);
-    current_ = corner ? Plant::frame(vehicle_.sample_ns(t1_ns)) : next;
-    plant_.inputs.frame.hold(current_);
-    if (corner) {
+    if (feed_.end_tick(plant_.inputs.frame)) {  // a corner: the next tick starts from the right limit
       Plant::apparent(plant_, plant_.inputs.frame.t0, x_, theta_start_);
     } else {
       theta_start_[0] = theta_end[0];
@@ -212,6 +207,23 @@ class PlatformDevice {
   }
 
   bool finite() const { return x_.allFinite(); }
+
+  // report.json "error_estimate": the half-step comparison (the frame's motion is interpolated within the tick
+  // exactly as in the run, so the re-integration at half the step sees the same forcing).
+  nlohmann::json error_estimate() const {
+    const auto apply = [](auto& p, const auto& in) { p.inputs = in; };
+    return window_.template estimate<dynamics::Rk4>(plant_, apply, s_.loop.tick_ns, s_.loop.substeps, 4, state_names(),
+                                                    "none watched: vehicle motion, servo and Schuler-loop torques act");
+  }
+  static std::array<const char*, Model::kStateSize> state_names() {
+    if constexpr (Model::kStateSize == 4) {
+      return {"tilt_rad", "platform_rate_rad_s", "gyro_angle_rad", "gyro_rate_rad_s"};
+    } else {
+      return {"tilt1_rad",       "tilt2_rad",       "tilt3_rad",       "platform_rate1_rad_s",
+              "platform_rate2_rad_s", "platform_rate3_rad_s", "gyro_angle1_rad", "gyro_angle2_rad",
+              "gyro_angle3_rad", "gyro_rate1_rad_s", "gyro_rate2_rad_s", "gyro_rate3_rad_s"};
+    }
+  }
 
   static std::vector<std::string> columns() {
     return {"tilt1_rad", "tilt2_rad", "theta1_rad", "theta2_rad", "torquer1_Nm", "torquer2_Nm", "gyro1_rad",
@@ -279,7 +291,8 @@ class PlatformDevice {
   // The level frame's rate about channel i at the start of tick k (k ≥ 0, within the last kHistory ticks).
   void remember_rates(std::int64_t k) {
     for (int i = 0; i < kChannels; ++i)
-      rate_hist_[static_cast<std::size_t>(k % kHistory)][static_cast<std::size_t>(i)] = Plant::frame_rate(current_, i);
+      rate_hist_[static_cast<std::size_t>(k % kHistory)][static_cast<std::size_t>(i)] =
+          Plant::frame_rate(feed_.frame(), i);
   }
   double rate_history(std::int64_t k, int i) const {
     k = k < 0 ? 0 : k;
@@ -291,9 +304,9 @@ class PlatformDevice {
   dynamics::Rk4<Model> integ_;
   dynamics::SubstepDriver<dynamics::Rk4<Model>> driver_;
   typename Model::State x_;
-  VehicleGenerator vehicle_;
-  CornerClock corners_;
-  models::FrameSample current_{};
+  // report.json "error_estimate" (tools/accuracy/half_step_window.hpp): 1000 ticks from the run's middle.
+  accuracy::HalfStepWindow<Model, typename Model::Inputs> window_{s_.loop.ticks() / 2, 1000};
+  VehicleFrameFeed<models::FrameSample (*)(const motion::EarthVehicleSample&)> feed_;
   std::array<sensors::SensorNoise, 2> noise_;
   std::array<random::SeededRng, 2> rng_;
   std::unique_ptr<Controller> controller_;
@@ -400,12 +413,8 @@ int run_inertial_platform(SceneReader& reader, const RunRequest& req) {
   auto scene = std::make_unique<PlatformScene>();
   if (!read_scene(reader, *scene)) return 2;
   if (req.check_only) return 0;
-  if (scene->axes == 1) {
-    auto device = std::make_unique<PlatformDevice<models::SingleAxisPlatform>>(*scene);
-    return run_device(*device, scene->loop, req);
-  }
-  auto device = std::make_unique<PlatformDevice<models::ThreeAxisPlatform>>(*scene);
-  return run_device(*device, scene->loop, req);
+  return scene->axes == 1 ? run_on_scene<PlatformDevice<models::SingleAxisPlatform>>(*scene, req)
+                          : run_on_scene<PlatformDevice<models::ThreeAxisPlatform>>(*scene, req);
 }
 
 }  // namespace gyrostab::tools

@@ -30,6 +30,7 @@
 #include "sim/random/seeded_rng.hpp"
 #include "sim/sensors/encoder.hpp"
 #include "sim/sensors/sensor_noise.hpp"
+#include "tools/accuracy/half_step_window.hpp"
 #include "tools/devices/running_stats.hpp"
 #include "tools/devices/scene_device.hpp"
 #include "hil/link/actuator_frame_check.hpp"
@@ -249,7 +250,9 @@ class MonorailDevice {
   }
 
   void advance(std::int64_t tick) {
+    window_.before_tick(tick, x_, {plant_.command_Nm, plant_.brake_Nms});
     driver_.advance_tick(tick, x_);
+    window_.after_tick(tick, x_);
     const std::int64_t now = tick + 1;  // the state is at the start of tick + 1
     if (now >= settle_tick_) tilt_.add(x_[0]);
     case_peak_ = std::fmax(case_peak_, std::fabs(x_[1]));
@@ -263,6 +266,19 @@ class MonorailDevice {
   }
 
   bool finite() const { return x_.allFinite(); }
+
+  // report.json "error_estimate" (tools/accuracy/half_step_window.hpp): 1 s from the first load (the gust's or
+  // the curve's start, else t = 0; the run's middle if that is later), where the car and the case move most.
+  nlohmann::json error_estimate() const {
+    const auto apply = [](CarOnTrack& p, const TickInputs& in) {
+      p.command_Nm = in.command_Nm;
+      p.brake_Nms = in.brake_Nms;
+    };
+    return window_.estimate<dynamics::Rk4>(plant_, apply, s_.loop.tick_ns, s_.loop.substeps, 4,
+                                           {"tilt_rad", "case_angle_rad", "tilt_rate_rad_s", "case_rate_rad_s"},
+                                           "none watched: gust, curve, motor and brake act");
+  }
+
   // The runtime guard's names for the plant state (tools/run/state_guard.hpp).
   static constexpr int kGuardedStates = 4;
   static const char* state_name(int i) {
@@ -371,6 +387,19 @@ class MonorailDevice {
     return -s_.controller.law.k * (phi + s_.sensors.tilt_bias_rad) / (s_.car.q - s_.car.H * W);
   }
 
+  struct TickInputs {
+    double command_Nm, brake_Nms;
+  };
+  std::int64_t first_load_tick() const {
+    const Gust& g = s_.track.gust;
+    const CurveProfile& c = s_.track.curve;
+    double t = std::numeric_limits<double>::infinity();
+    if (g.M1 != 0.0) t = std::min(t, g.start_s);
+    if (c.Omega3 != 0.0) t = std::min(t, c.start_s);
+    if (!std::isfinite(t)) t = 0.0;
+    return std::min(tick_at(t), s_.loop.ticks() / 2);
+  }
+
   const MonorailScene& s_;
   CarOnTrack plant_;
   dynamics::Rk4<CarOnTrack> integ_;
@@ -388,6 +417,8 @@ class MonorailDevice {
   double case_peak_{0.0}, torque_peak_{0.0};
   std::int64_t overturned_tick_{-1};
   std::int64_t ticks_{0};
+  accuracy::HalfStepWindow<CarOnTrack, TickInputs> window_{first_load_tick(),
+                                                           static_cast<std::int64_t>(1.0 / s_.loop.tick_s())};
 };
 
 bool read_scene(SceneReader& r, MonorailScene& s) {

@@ -25,6 +25,7 @@
 #include "sim/random/seeded_rng.hpp"
 #include "sim/sensors/encoder.hpp"
 #include "sim/sensors/sensor_noise.hpp"
+#include "tools/accuracy/half_step_window.hpp"
 #include "tools/devices/scene_device.hpp"
 #include "hil/link/actuator_frame_check.hpp"
 #include "tools/run/closed_loop.hpp"
@@ -133,7 +134,9 @@ class ServoGyroDevice {
 
   void advance(std::int64_t tick) {
     const double M2 = plant_.command_Nm - plant_.brake_Nms * x_[3];  // over this tick (zero-order hold)
+    window_.before_tick(tick, x_, {plant_.command_Nm, plant_.brake_Nms});
     driver_.advance_tick(tick, x_);
+    window_.after_tick(tick, x_);
     ticks_ = tick + 1;
     if (ticks_ < settle_tick_) return;
     if (!started_) {
@@ -150,6 +153,19 @@ class ServoGyroDevice {
   }
 
   bool finite() const { return x_.allFinite(); }
+
+  // report.json "error_estimate" (tools/accuracy/half_step_window.hpp): 1 s of the steady drive from the end of
+  // the settling time (the run's middle if that is later).
+  nlohmann::json error_estimate() const {
+    const auto apply = [](DrivenServoGyro& p, const TickInputs& in) {
+      p.command_Nm = in.command_Nm;
+      p.brake_Nms = in.brake_Nms;
+    };
+    return window_.estimate<dynamics::Rk4>(plant_, apply, s_.loop.tick_ns, s_.loop.substeps, 4,
+                                           {"alpha_rad", "beta_rad", "alpha_rate_rad_s", "beta_rate_rad_s"},
+                                           "none watched: the drive motor and friction act");
+  }
+
   // The runtime guard's names for the plant state (tools/run/state_guard.hpp).
   static constexpr int kGuardedStates = 4;
   static const char* state_name(int i) {
@@ -250,6 +266,10 @@ class ServoGyroDevice {
     r.dissipation += s_.gyro.d1 * x_[2] * x_[2] + s_.gyro.d2 * x_[3] * x_[3];
   }
 
+  struct TickInputs {
+    double command_Nm, brake_Nms;
+  };
+
   const ServoScene& s_;
   DrivenServoGyro plant_;
   dynamics::Rk4<DrivenServoGyro> integ_;
@@ -266,6 +286,8 @@ class ServoGyroDevice {
   std::int64_t revolutions_{0};
   DriveSums run_{}, done_{};
   std::int64_t ticks_{0};
+  accuracy::HalfStepWindow<DrivenServoGyro, TickInputs> window_{std::min(settle_tick_, s_.loop.ticks() / 2),
+                                                                static_cast<std::int64_t>(1.0 / s_.loop.tick_s())};
 };
 
 bool read_scene(SceneReader& r, ServoScene& s) {

@@ -173,7 +173,8 @@ class ShipRollDamperDevice {
   void actuate(const msg::ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.command_Nm = cmd.gimbal_torque_Nm[msg::kAxis2];
-    plant_.brake_Nms = s_.ship.d2 + std::clamp(cmd.precession_brake, 0.0, 1.0) * s_.brake_full_Nms;
+    // The bearing's own d2 is in the model (ShipRollDamper applies −d2 β'); only the controller's brake here.
+    plant_.brake_Nms = std::clamp(cmd.precession_brake, 0.0, 1.0) * s_.brake_full_Nms;
   }
 
   void advance(std::int64_t tick) {

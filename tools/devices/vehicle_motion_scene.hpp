@@ -131,6 +131,11 @@ inline void remove_centrifugal_tilt(const motion::EarthVehicleSample& s, double 
   const dynamics::Vec3 horizontal_I = c_I - c_I.dot(up_I) * up_I;
   Z.f_Z -= Z.q_IZ.conjugate() * horizontal_I;
 }
+// A trihedron Z of the sample s (track, geographic) with the plumb line as its vertical at rest.
+inline motion::Trihedron plumb_referred(const motion::EarthVehicleSample& s, motion::Trihedron Z, double earth_rate) {
+  remove_centrifugal_tilt(s, earth_rate, Z);
+  return Z;
+}
 
 // The instruments' frames from the generator's trihedra.
 // Gyro vertical (forward, right, down) from the track trihedron T (forward, left, up).
@@ -147,5 +152,16 @@ inline models::FrameSample frame_up_east_north(const motion::Trihedron& G) {
 inline models::FrameSample frame_as_is(const motion::Trihedron& Z) {
   return {Z.w_IZ_Z, Z.dw_IZ_Z, Z.f_Z};
 }
+
+// A pendulous instrument's frame from a sample: its trihedron `which` (track, geographic) with the plumb line
+// as the vertical at rest (plumb_referred), in the instrument's `axes` (frame_forward_right_down, ...).
+struct PlumbFrame {
+  motion::Trihedron motion::EarthVehicleSample::*which;
+  models::FrameSample (*axes)(const motion::Trihedron&);
+  double earth_rate;  // [rad/s]
+  models::FrameSample operator()(const motion::EarthVehicleSample& v) const {
+    return axes(plumb_referred(v, v.*which, earth_rate));
+  }
+};
 
 }  // namespace gyrostab::tools
