@@ -18,8 +18,12 @@
 // Remaining states (e.g. H) take the midpoint derivative.
 //
 // A Model provides the State layout [q0, q1, v0, v1, ...], derivative(), project() and
-// gyroscopic_pair(x) -> GyroscopicPair.
+// gyroscopic_pair(x) -> GyroscopicPair; optionally derivative_with_pair(t, x, dx) -> GyroscopicPair, both from
+// one evaluation of the model's trigonometry (the same numbers; about a third less work per step for a
+// gimbal gyro, whose sinβ, cosβ and I(β) both need).
 #pragma once
+
+#include <concepts>
 
 #include "sim/dynamics/damped_gyroscopic_flow.hpp"
 
@@ -35,18 +39,27 @@ class GyroscopicExponential {
   explicit GyroscopicExponential(const Model& model) : model_(model) {}
 
   void step(double t, double h, State& x) {
-    model_.derivative(t, x, f_);
-    flow(x, x, 0.5 * h, mid_);
-    model_.derivative(t + 0.5 * h, mid_, f_);
-    flow(mid_, x, h, next_);
+    flow(x, stage(t, x), x, 0.5 * h, mid_);
+    flow(mid_, stage(t + 0.5 * h, mid_), x, h, next_);
     x = next_;
     model_.project(x);
   }
 
  private:
-  // Freeze K and r at `at` (where f_ was evaluated) and flow `from` over tau into `out`.
-  void flow(const State& at, const State& from, double tau, State& out) const {
-    const GyroscopicPair k = model_.gyroscopic_pair(at);
+  static constexpr bool kSharedTrig = requires(const Model& m, double t, const State& x, State& dx) {
+    { m.derivative_with_pair(t, x, dx) } -> std::convertible_to<GyroscopicPair>;
+  };
+  // f_ and K at (t, at).
+  GyroscopicPair stage(double t, const State& at) {
+    if constexpr (kSharedTrig) {
+      return model_.derivative_with_pair(t, at, f_);
+    } else {
+      model_.derivative(t, at, f_);
+      return model_.gyroscopic_pair(at);
+    }
+  }
+  // Freeze K (k) and r at `at` (where f_ was evaluated) and flow `from` over tau into `out`.
+  void flow(const State& at, const GyroscopicPair& k, const State& from, double tau, State& out) const {
     const double r0 = f_[2] + k.p * at[2] + k.a * at[3];
     const double r1 = f_[3] - k.b * at[2] + k.q * at[3];
     damped_gyroscopic_flow(k, tau, r0, r1, from.data(), out.data());

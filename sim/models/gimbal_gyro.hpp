@@ -76,7 +76,11 @@ class GimbalGyro {
     return x;
   }
 
-  void derivative(double t, const State& x, State& dx) const {
+  void derivative(double t, const State& x, State& dx) const { (void)derivative_with_pair(t, x, dx); }
+
+  // derivative() and gyroscopic_pair() at the same (t, x) from one evaluation of sinβ, cosβ and I(β): what
+  // dynamics::GyroscopicExponential asks for at each of its two stages. Bit-identical to calling both.
+  dynamics::GyroscopicPair derivative_with_pair(double t, const State& x, State& dx) const {
     const BaseSample b = base_(t);
     const double sa = std::sin(x[0]), ca = std::cos(x[0]);
     const double sb = std::sin(x[1]), cb = std::cos(x[1]);
@@ -109,6 +113,7 @@ class GimbalGyro {
     dx[2] = (Qa - eA1 - cb * eJ1 - sb * eJ3) / M11;
     dx[3] = (Qb - eJ2) / I2_;
     dx[4] = torques.M3;
+    return {x[4] * cb / M11, x[4] * cb / I2_, p_.d1 / M11, p_.d2 / I2_};
   }
   void project(State& /*x*/) const {}
 

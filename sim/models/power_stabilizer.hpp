@@ -201,6 +201,15 @@ class PowerStabilizer {
   dynamics::GyroscopicPair gyroscopic_pair(const State& x) const requires(!kElastic && !kPrecession) {
     return gyro_.gyroscopic_pair(x);
   }
+  // Both at once, sharing the gyro's trigonometry (dynamics::GyroscopicExponential prefers it).
+  dynamics::GyroscopicPair derivative_with_pair(double t, const State& x, State& dx) const
+      requires(!kElastic && !kPrecession) {
+    GimbalTorques& tq = gyro_.torques;
+    tq.M2 = inputs.M2S + inputs.M2K;
+    tq.M3 = 0.0;
+    tq.M1 = inputs.M1S + driven_torque1();
+    return gyro_.derivative_with_pair(t, x, dx);
+  }
 
   // Gimbal rates (α', β') relative to the base [rad/s]: states of the full model; of the precession model the
   // solution of (10.19)-(10.22) at (t, x) with the held inputs.

@@ -63,6 +63,12 @@ struct CountedModel {
   {
     return model->gyroscopic_pair(x);
   }
+  auto derivative_with_pair(double t, const State& x, State& dx) const
+    requires requires(const M& m) { m.derivative_with_pair(t, x, dx); }
+  {
+    ++evaluations;
+    return model->derivative_with_pair(t, x, dx);
+  }
 };
 
 }  // namespace gyrostab::tools::accuracy
