@@ -26,6 +26,7 @@
 #include "sim/dynamics/damped_gyroscopic_flow.hpp"
 #include "sim/random/seeded_rng.hpp"
 #include "tools/accuracy/study_problem.hpp"
+#include "tools/devices/ship_in_sea.hpp"
 #include "tools/devices/ship_roll_damper_study.hpp"
 
 namespace gyrostab::tools::accuracy {
@@ -48,28 +49,7 @@ class StudySea {
   std::unique_ptr<motion::IrregularSea<256>> sea_;
 };
 
-struct ShipInStudySea {
-  static constexpr int kStateSize = 4;
-  using State = models::ShipRollDamper::State;
-  mutable models::ShipRollDamper ship;
-  const StudySea* sea;
-  double brake_Nms{0.0};
-  double command_Nm{0.0};
-
-  void derivative(double t, const State& x, State& dx) const {
-    ship.inputs.E = (*sea)(t);
-    ship.inputs.M2 = command_Nm - brake_Nms * x[3];
-    ship.derivative(t, x, dx);
-  }
-  void project(State&) const {}
-
-  dynamics::GyroscopicPair gyroscopic_pair(const State& x) const {
-    const models::ShipRollDamperParams& p = ship.params();
-    const double sb = std::sin(x[1]), cb = std::cos(x[1]);
-    const double inertia = p.A - p.Q * sb * sb;
-    return {p.H * cb / inertia, p.H * cb / p.B, p.d1 / inertia, (p.d2 + brake_Nms) / p.B};
-  }
-};
+using ShipInStudySea = ShipInSeaOf<StudySea>;
 
 class ShipProblem {
  public:

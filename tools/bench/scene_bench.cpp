@@ -26,6 +26,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "firmware/app/ship_roll_damper_controller.hpp"
@@ -39,6 +40,7 @@
 #include "sim/sensors/encoder.hpp"
 #include "sim/sensors/sensor_noise.hpp"
 #include "tools/commands.hpp"
+#include "tools/devices/ship_in_sea.hpp"
 #include "tools/scene/loop_config.hpp"
 #include "tools/scene/scene_reader.hpp"
 
@@ -160,20 +162,9 @@ models::ShipRollDamperParams ship_params(bool locked) {
   return p;
 }
 
-// As ShipInSea in ship_roll_damper_scene.cpp: E(t) at every stage, the brake as a viscous torque.
-template <class Sea>
-struct ShipInSea {
-  static constexpr int kStateSize = 4;
-  using State = models::ShipRollDamper::State;
-  mutable models::ShipRollDamper ship;
-  const Sea* sea;
-  double command_Nm{0.0};
-  void derivative(double t, const State& x, State& dx) const {
-    ship.inputs.E = sea != nullptr ? (*sea)(t) : 1e5;
-    ship.inputs.M2 = command_Nm;
-    ship.derivative(t, x, dx);
-  }
-  void project(State&) const {}
+// The step without the sea's cost: a constant wave moment.
+struct ConstantMoment {
+  double operator()(double) const { return 1e5; }
 };
 
 // The sea's share of a tick: one grid step (sample n + 1) and the RK4 stage calls of both plants.
@@ -195,11 +186,18 @@ BENCHMARK(BM_ShipSeaPerTick)->Name("ship/sea_8_stage_calls");
 // One RK4 step of one plant, with the sea (`with_sea`) or a constant moment; locked = the reference ship.
 template <bool kLocked, bool kWithSea>
 void BM_ShipPlantStep(benchmark::State& state) {
-  const auto sea = make_ship_sea();
-  using Plant = ShipInSea<motion::IrregularSea<256>>;
-  Plant plant{models::ShipRollDamper(ship_params(kLocked)), kWithSea ? &sea : nullptr, 0.0};
+  using Sea = std::conditional_t<kWithSea, motion::IrregularSea<256>, ConstantMoment>;
+  const Sea sea = [] {
+    if constexpr (kWithSea) {
+      return make_ship_sea();
+    } else {
+      return ConstantMoment{};
+    }
+  }();
+  using Plant = tools::ShipInSeaOf<Sea>;
+  Plant plant{models::ShipRollDamper(ship_params(kLocked)), &sea, 0.0, 0.0};
   dynamics::Rk4<Plant> rk4(plant);
-  Plant::State x = Plant::State::Zero();
+  typename Plant::State x = Plant::State::Zero();
   x[0] = 0.05;
   x[1] = 0.3;
   std::int64_t k = 0;

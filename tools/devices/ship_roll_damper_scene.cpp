@@ -26,6 +26,7 @@
 #include "tools/accuracy/half_step_window.hpp"
 #include "tools/accuracy/input_tap.hpp"
 #include "tools/devices/running_stats.hpp"
+#include "tools/devices/ship_in_sea.hpp"
 #include "tools/devices/ship_roll_damper_study.hpp"
 #include "tools/devices/scene_device.hpp"
 #include "tools/run/closed_loop.hpp"
@@ -107,23 +108,7 @@ class SeaMoment {
   mutable std::size_t next_memo_{0};
 };
 
-// The ship model with the sea moment evaluated at every integrator stage (no zero-order hold on E(t)) and
-// the precession brake acting as a viscous torque.
-struct ShipInSea {
-  [[maybe_unused]] static constexpr int kStateSize = 4;
-  using State = models::ShipRollDamper::State;
-  mutable models::ShipRollDamper ship;
-  const SeaMoment* sea;
-  double brake_Nms{0.0};
-  double command_Nm{0.0};
-
-  void derivative(double t, const State& x, State& dx) const {
-    ship.inputs.E = (*sea)(t);
-    ship.inputs.M2 = command_Nm - brake_Nms * x[3];
-    ship.derivative(t, x, dx);
-  }
-  void project(State&) const {}
-};
+using ShipInSea = ShipInSeaOf<SeaMoment>;
 
 class ShipRollDamperDevice {
  public:
