@@ -151,8 +151,11 @@ TEST(LcmBadMessages, AreCountedByKindAndNeverApplied) {
   }
   EXPECT_EQ(r["link"]["counters"]["accepted"], 3000);
   EXPECT_EQ(r["link"]["actuator_limits"]["torque_Nm"][1], 2000.0);
-  // Per forging round (every 10th tick): one NaN, two out of range (brake, torque).
-  EXPECT_EQ(plant["out_of_range"].get<int>(), 2 * plant["non_finite"].get<int>());
+  // Per forging round (every 10th tick): one NaN, then two out of range (brake, torque). The plant stops
+  // reading after its last tick, so the last round may be cut after its NaN (seen under the sanitizers).
+  const int nan_frames = plant["non_finite"].get<int>();
+  EXPECT_LE(plant["out_of_range"].get<int>(), 2 * nan_frames);
+  EXPECT_GE(plant["out_of_range"].get<int>(), 2 * nan_frames - 2);
   EXPECT_EQ(r["link"]["drive_watchdog"]["zero_torque_ticks"], 0);
   const nlohmann::json& ctl = r["controller_process"]["link"]["counters"]["rejected"];
   for (const char* kind : {"size", "fingerprint", "stale", "repeated", "ahead"}) {
