@@ -110,9 +110,13 @@ TEST(CanClosedLoop, PlantAndControllerStartedByHandInEitherOrder) {
   const std::vector<std::string> common{"--can-if", can_if(), "--ticks", "300"};
   const Exit i = run({gyrostab_bin(), "run", path, "--ticks", "300", "--no-progress", "--out", d / "inproc"});
   ASSERT_EQ(i.code, 0);
-  // Plant first: it resends its first sensor set until the controller answers.
+  // Plant first: it resends its first sensor set until the controller answers. The controller starts only
+  // after a frame was on the bus (`candump -n 1` exits on the first one), so nobody listened to that frame
+  // however slowly the plant starts (sanitizer builds in the emulated VM take seconds).
+  const pid_t first_frame = spawn({"/bin/sh", "-c", "exec candump -n 1 " + can_if() + " > /dev/null"});
+  ASSERT_TRUE(wait_for_can_listener(-1)) << "candump never opened its socket";
   const pid_t plant = spawn(cat({gyrostab_bin(), "plant", path, "--out", d / "plant"}, common));
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(wait_for(first_frame).code, 0);
   const pid_t controller = spawn(cat({gyrostab_bin(), "controller", path, "--out", d / "controller"}, common));
   EXPECT_EQ(wait_for(plant).code, 0);
   EXPECT_EQ(wait_for(controller).code, 0);
