@@ -77,13 +77,9 @@ models::SchulerPendulumParams rigid_equivalent(const models::ChelnokovParams& c)
   return p;
 }
 
-TEST(Chelnokov, Equation13ResidualAndChi14OnARigidBodyRun) {
-  // Digest §6.10 item 1: H = 0 class member with k = 2 ≠ I1g (rotors), I3 = 0.7, l m = 1.5, body torque
-  // M_Y = (0.05, −0.03, 0.02), arbitrary ω°_Z, f and gradient. The 3-D body runs with RK4 at h = 2.5e-4 s;
-  // κ'' is a central difference (δ = h) of κ' formed from the body state: truncation δ²|κ''''|/6, measured
-  // 2.9e-6 at δ = 1e-3 s, so 1.8e-7 here; RK4 state error ~1e-14, rounding ε/δ ~ 4e-13. Tolerance 1e-6 on
-  // terms of order 1 (a wrong sign or factor in any (1.3) term gives O(0.1)). χ: the constraint
-  // form, (1.4)'s closed form and (1.4)'s first form agree to rounding (1e-12).
+// The digest's §6.10 item 1 member of the H = 0 class: k = 2 ≠ I1g (rotors), I3 = 0.7, l m = 1.5, with a
+// gravity gradient — every term of (1.3) of order 1.
+models::ChelnokovParams general_member() {
   models::ChelnokovParams c;
   c.k = 2.0;
   c.I3 = 0.7;
@@ -91,6 +87,17 @@ TEST(Chelnokov, Equation13ResidualAndChi14OnARigidBodyRun) {
   c.gravity_gradient = true;
   c.I1g = 1.6;
   c.I3g = 0.7;
+  return c;
+}
+
+TEST(Chelnokov, Equation13ResidualAndChi14OnARigidBodyRun) {
+  // Digest §6.10 item 1: H = 0 class member with k = 2 ≠ I1g (rotors), I3 = 0.7, l m = 1.5, body torque
+  // M_Y = (0.05, −0.03, 0.02), arbitrary ω°_Z, f and gradient. The 3-D body runs with RK4 at h = 2.5e-4 s;
+  // κ'' is a central difference (δ = h) of κ' formed from the body state: truncation δ²|κ''''|/6, measured
+  // 2.9e-6 at δ = 1e-3 s, so 1.8e-7 here; RK4 state error ~1e-14, rounding ε/δ ~ 4e-13. Tolerance 1e-6 on
+  // terms of order 1 (a wrong sign or factor in any (1.3) term gives O(0.1)). χ: the constraint
+  // form, (1.4)'s closed form and (1.4)'s first form agree to rounding (1e-12).
+  const models::ChelnokovParams c = general_member();
   const SyntheticReference ref;
   using Body = models::SchulerPendulum<SyntheticReference>;
   using Kappa = models::ChelnokovKappa<SyntheticReference>;
@@ -136,13 +143,7 @@ TEST(Chelnokov, KappaLambdaAndZFormsGiveTheRigidBodysMotion) {
   // λ = κ∘μ, z = s∘μ with μ = cos(ε/2) − i3 sin(ε/2), ε = c r t ((3.5)/(4.6); r is constant, M3 = 0).
   // All four integrated with RK4 at h = 2e-3 s for 10 s; compared as the instrument vertical in inertial
   // axes and as quaternions. RK4 global error ~ (h ω)⁴ ~ 1e-11 with |ω| ~ 1; tolerance 1e-8.
-  models::ChelnokovParams c;
-  c.k = 2.0;
-  c.I3 = 0.7;
-  c.lm = 1.5;
-  c.gravity_gradient = true;
-  c.I1g = 1.6;
-  c.I3g = 0.7;
+  const models::ChelnokovParams c = general_member();
   const SyntheticReference ref;
   using Body = models::SchulerPendulum<SyntheticReference>;
   using Kappa = models::ChelnokovKappa<SyntheticReference>;
