@@ -68,6 +68,10 @@ class FrameOrder {
     last_sequence_ = sequence;
   }
   bool have_last() const { return have_last_; }
+  // The sequence moved on from the last accepted frame: a frame sent after it, not a copy or a replay.
+  bool sequence_advances(std::uint32_t sequence) const {
+    return !have_last_ || static_cast<std::int32_t>(sequence - last_sequence_) > 0;
+  }
   std::uint64_t last_tick() const { return last_tick_; }
 
  private:

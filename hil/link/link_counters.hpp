@@ -29,6 +29,7 @@ struct LinkCounters {
   // Per tick.
   std::uint64_t missed_frames{0};  // ticks that ended without an accepted frame [-]
   std::uint64_t timeouts{0};       // waits that reached their deadline [-]
+  std::uint64_t resynced{0};       // real time: late frames the controller re-phased its deadlines on [-]
 
   std::uint64_t rejected() const {
     return rejected_size + rejected_fingerprint + rejected_malformed + rejected_non_finite +

@@ -23,15 +23,32 @@ namespace gyrostab::dynamics {
 namespace detail {
 
 // φ2(w) = Σ w^k/(k+2)!, for complex w.
+// |w| < 0.5: the series to degree n, split into even and odd parts in z = w² (two independent Horner chains,
+// half the latency of one; the flow is on the integrator's critical path), n chosen from |w| so that the
+// truncation is below 1e-18 of φ2 and of its imaginary part (which k1 divides by μ): n = 9, 11, 13, 15 up to
+// |w| = 0.05, 0.15, 0.25, 0.5. Worst relative error over 1e6 random |w| < 0.5 against a long-double sum:
+// 3.2e-16, and 4.0e-16 in the imaginary part (tests/unit/damped_gyroscopic_flow_test.cpp checks 2e-15).
 inline std::complex<double> phi2(std::complex<double> w) {
-  if (std::norm(w) < 0.25) {  // |w| < 0.5 without hypot()
-    // At most 16 terms: |w|^16/18! < 3e-21; stop once a term is below 1e-22 (|w| = 0.1 needs 9).
-    std::complex<double> sum = 0.0, term = 0.5;  // 1/2!
-    for (int k = 0; k < 16 && std::norm(term) >= 1e-44; ++k) {
-      sum += term;
-      term *= w / static_cast<double>(k + 3);
+  static constexpr double c[16] = {1.0 / 2,          1.0 / 6,           1.0 / 24,           1.0 / 120,
+                                   1.0 / 720,        1.0 / 5040,        1.0 / 40320,        1.0 / 362880,
+                                   1.0 / 3628800,    1.0 / 39916800,    1.0 / 479001600,    1.0 / 6227020800.0,
+                                   1.0 / 87178291200.0, 1.0 / 1307674368000.0, 1.0 / 20922789888000.0,
+                                   1.0 / 355687428096000.0};  // 1/(k+2)!
+  const double x = w.real(), y = w.imag();
+  const double r2 = x * x + y * y;
+  if (r2 < 0.25) {
+    const int n = r2 < 0.0025 ? 9 : (r2 < 0.0225 ? 11 : (r2 < 0.0625 ? 13 : 15));  // odd: the last index
+    const double zr = x * x - y * y, zi = 2.0 * x * y;
+    double er = c[n - 1], ei = 0.0, or_ = c[n], oi = 0.0;  // E(z) = Σ c_2j z^j, O(z) = Σ c_2j+1 z^j
+    for (int k = n - 3; k >= 0; k -= 2) {
+      const double er1 = er * zr - ei * zi + c[k];
+      ei = er * zi + ei * zr;
+      er = er1;
+      const double or1 = or_ * zr - oi * zi + c[k + 1];
+      oi = or_ * zi + oi * zr;
+      or_ = or1;
     }
-    return sum;
+    return {er + x * or_ - y * oi, ei + x * oi + y * or_};  // E + w O
   }
   return (std::exp(w) - 1.0 - w) / (w * w);
 }

@@ -74,7 +74,7 @@ inline int hil_test_main(int argc, char** argv) {
     return 2;
   }
   ::testing::InitGoogleTest(&argc, argv);
-  setenv("GYROSTAB_PLOT_SCRIPT", "/dev/null", 1);
+  setenv("GYROSTAB_PLOT_SCRIPT", "", 1);  // the VM has no python3: plots off
   std::printf("hil: %s on %s\n", std::getenv("GYROSTAB_VCAN_MODE"), can_if().c_str());
   return RUN_ALL_TESTS();
 }

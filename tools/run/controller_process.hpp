@@ -59,14 +59,27 @@ struct ControllerLinkOutcome {
 
 enum class SensorWait { kAccepted, kSkipped, kMissing, kLost, kStopped, kError };
 
+// Real time: where the controller believes the plant's clock is — the arrival of the sensor frame of
+// `tick` (ns). The deadline for tick k follows from it.
+struct PlantPhase {
+  std::int64_t arrival_ns{0};
+  std::int64_t tick{-1};  // < 0: not known yet (the tick-0 handshake runs in lockstep)
+
+  std::int64_t deadline(std::int64_t k, const LinkSettings& s) const {
+    return arrival_ns + (k - tick) * s.period_ns +
+           static_cast<std::int64_t>(kControllerWindow * static_cast<double>(s.period_ns));
+  }
+};
+
 template <class Transport>
 SensorWait wait_for_sensor(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& order, std::int64_t k,
-                           std::int64_t deadline_ns, std::int64_t lost_at_ns, bool lockstep, const LinkSettings& s,
+                           PlantPhase& phase, std::int64_t lost_at_ns, bool lockstep, const LinkSettings& s,
                            std::int64_t last_sent_tick, std::int64_t& last_republish_ns, msg::SensorFrame& frame,
                            msg::SensorFrame& early) {
   hil::LinkCounters& c = ep.counters();
   const auto tick = static_cast<std::uint64_t>(k);
   for (;;) {
+    const std::int64_t deadline_ns = lockstep ? hil::kNoDeadline : phase.deadline(k, s);
     const std::int64_t until = std::min(deadline_ns, lost_at_ns);
     msg::SensorFrame f{};
     const hil::RxStatus r = ep.receive(until, f);
@@ -90,6 +103,16 @@ SensorWait wait_for_sensor(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& o
       return SensorWait::kSkipped;
     }
     hil::count_order_rejection(o, c);
+    if (!lockstep && o == hil::OrderVerdict::kStale && f.tick < tick &&
+        tick - f.tick <= static_cast<std::uint64_t>(kMaxResyncTicks) &&
+        static_cast<std::int64_t>(f.tick) > phase.tick && order.sequence_advances(f.sequence)) {
+      // A frame we had already stepped as missing: the plant's clock runs behind our estimate of it (a slow
+      // first tick, a stall of either process). Follow the plant, the clock master, from this arrival on;
+      // otherwise a phase error beyond the window would make every later frame stale as well.
+      phase.arrival_ns = hil::monotonic_ns();
+      phase.tick = static_cast<std::int64_t>(f.tick);
+      ++c.resynced;
+    }
     if (o == hil::OrderVerdict::kRepeated && lockstep && last_sent_tick >= 0 &&
         f.tick == static_cast<std::uint64_t>(last_sent_tick)) {
       // The plant did not get our answer (or its copy of the frame crossed ours): answer again, at most once
@@ -127,7 +150,7 @@ void run_controller_loop(Device& device, const LoopConfig& cfg, const RunRequest
   msg::ActuatorFrame out{}, published{};
   std::int64_t last_sent_tick = -1;
   std::int64_t last_republish = 0;
-  std::int64_t anchor_ns = 0, anchor_tick = -1;  // real time: arrival of the last accepted frame
+  PlantPhase phase;  // real time: the plant's clock, from the arrivals of its frames
   std::int64_t last_heard = hil::monotonic_ns();
   bool heard_any = false;
   for (std::int64_t k = 0; k < ticks; ++k) {
@@ -135,11 +158,7 @@ void run_controller_loop(Device& device, const LoopConfig& cfg, const RunRequest
       link.stop_signal = stop_signal_received();
       break;
     }
-    const bool lockstep = !s.real_time || anchor_tick < 0;
-    const std::int64_t deadline =
-        lockstep ? hil::kNoDeadline
-                 : anchor_ns + (k - anchor_tick) * s.period_ns +
-                       static_cast<std::int64_t>(kControllerWindow * static_cast<double>(s.period_ns));
+    const bool lockstep = !s.real_time || phase.tick < 0;
     const std::int64_t lost_at =
         (lockstep ? hil::monotonic_ns() : last_heard) + (heard_any ? s.timeout_ns : s.start_timeout_ns);
     SensorWait w = SensorWait::kMissing;
@@ -152,7 +171,7 @@ void run_controller_loop(Device& device, const LoopConfig& cfg, const RunRequest
     } else if (have_early) {
       w = SensorWait::kMissing;  // a withheld tick before the early frame
     } else {
-      w = wait_for_sensor(ep, order, k, deadline, lost_at, lockstep, s, last_sent_tick, last_republish, frame,
+      w = wait_for_sensor(ep, order, k, phase, lost_at, lockstep, s, last_sent_tick, last_republish, frame,
                           early);
       if (w == SensorWait::kSkipped) {
         have_early = true;
@@ -189,9 +208,9 @@ void run_controller_loop(Device& device, const LoopConfig& cfg, const RunRequest
     if (got) {
       last_heard = t_start;
       heard_any = true;
-      if (s.real_time) {
-        anchor_ns = t_start;
-        anchor_tick = k;
+      if (s.real_time && !lockstep) {
+        phase.arrival_ns = t_start;
+        phase.tick = k;
       }
     } else {
       ++link.missing_ticks;
@@ -213,6 +232,13 @@ void run_controller_loop(Device& device, const LoopConfig& cfg, const RunRequest
       last_sent_tick = k;
     }
     const std::int64_t t_end = hil::monotonic_ns();
+    // The handshake: the plant's epoch is the arrival of this first command, not of its sensor frame (which
+    // came a whole first step earlier — a first step may be slow: page faults, a sanitizer's start-up).
+    if (s.real_time && lockstep) {
+      phase.arrival_ns = t_end;
+      phase.tick = k;
+    }
+    const std::int64_t deadline = lockstep ? hil::kNoDeadline : phase.deadline(k, s);
     stats.compute.add(t_stepped - t_start);
     // Real time: the command is late if it leaves after the plant's window for it closes (approximately: the
     // plant's clock is not ours).

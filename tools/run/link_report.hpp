@@ -36,7 +36,8 @@ inline nlohmann::json counters_json(const hil::LinkCounters& c) {
             {"repeated", c.rejected_repeated},
             {"ahead", c.rejected_ahead}}},
           {"missed_frames", c.missed_frames},
-          {"timeouts", c.timeouts}};
+          {"timeouts", c.timeouts},
+          {"resynced", c.resynced}};
 }
 
 inline nlohmann::json link_timing_json(const LinkStats& s, const LinkSettings& settings) {

@@ -8,9 +8,13 @@
 // with its cached actuator frame (at most once per kResendNs).
 // Real time (--real-time): the plant is the clock master: tick k starts at epoch + k·T (clock_nanosleep,
 // TIMER_ABSTIME), its command must arrive by epoch + k·T + kPlantWindow·T, else the drives get zero torque
-// for that tick. The controller's deadline for the sensor frame of tick k is anchored on the last frame it
-// accepted: t_anchor + (k − k_anchor)·T + kControllerWindow·T; past it, it steps without a frame (the fault
-// monitor holds, then trips). Tick 0 is a lockstep handshake in both modes (the epoch starts after it).
+// for that tick. The controller's deadline for the sensor frame of tick k is anchored on the plant's phase:
+// t_anchor + (k − k_anchor)·T + kControllerWindow·T, with the anchor at the last frame it accepted (at the
+// handshake: when its first command left, since that arrival is the plant's epoch); past it, it steps without
+// a frame (the fault monitor holds, then trips). A frame that arrives after its tick was stepped as missing,
+// at most kMaxResyncTicks late and newer than the anchor, moves the anchor to its arrival: the plant is the
+// clock master, and a phase error beyond the window would otherwise make every later frame late as well.
+// Tick 0 is a lockstep handshake in both modes (the epoch starts after it).
 #pragma once
 
 #include <algorithm>
@@ -31,6 +35,9 @@ inline constexpr double kControllerWindow = 0.5;
 // further ahead is rejected as "ahead" (a forged or corrupted tick must not make the controller step a
 // billion times).
 inline constexpr std::int64_t kMaxAheadTicks = 1000;
+// Real time: the controller follows a late frame's phase only this many ticks back (a forged old tick must
+// not stall it for long).
+inline constexpr std::int64_t kMaxResyncTicks = 10;
 // Exit code of a process whose peer fell silent for the receive timeout (and of `run --transport lcm` when a
 // process of the pair was lost).
 inline constexpr int kExitPeerLost = 6;

@@ -57,8 +57,8 @@ bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recor
     }
   }
   if (!rec.write_csv(req.out_dir + "/signals.csv", error)) return false;
-  if (cfg.plots) {
-    const char* here = std::getenv("GYROSTAB_PLOT_SCRIPT");
+  const char* here = std::getenv("GYROSTAB_PLOT_SCRIPT");  // set and empty: no plots (tests, the CAN VM)
+  if (cfg.plots && (here == nullptr || *here != '\0')) {
     const std::string script = here ? here : GYROSTAB_SOURCE_DIR "/tools/plot/plot_run.py";
     const std::string cmd = "/usr/bin/python3 '" + script + "' '" + req.out_dir + "' 2>&1";
     if (std::system(cmd.c_str()) != 0) {
