@@ -58,7 +58,7 @@ class FrameOrder {
   OrderVerdict classify(std::uint64_t tick, std::uint32_t sequence, std::uint64_t expected_tick) const {
     if (have_last_ && tick == last_tick_ && sequence == last_sequence_) return OrderVerdict::kRepeated;
     if (tick < expected_tick) return OrderVerdict::kStale;
-    if (have_last_ && static_cast<std::int32_t>(sequence - last_sequence_) <= 0) return OrderVerdict::kStale;
+    if (!sequence_advances(sequence)) return OrderVerdict::kStale;
     if (tick > expected_tick) return OrderVerdict::kAhead;
     return OrderVerdict::kExpected;
   }

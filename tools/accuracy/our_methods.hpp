@@ -4,6 +4,8 @@
 //                      model's gyroscopic_pair()
 //   rk4                classical Runge-Kutta (4th order)
 //   implicit-midpoint  simplified Newton, difference-quotient Jacobian unless the model has one (2nd order)
+//   held-input-adams4  Adams-Bashforth 4 whose history survives the tick-held input jumps (one right-hand
+//                      side per step); needs the model's input-affine split (held_input_adams.hpp)
 #pragma once
 
 #include <cmath>
@@ -11,6 +13,7 @@
 #include <string_view>
 
 #include "sim/dynamics/gyroscopic_exponential.hpp"
+#include "sim/dynamics/held_input_adams.hpp"
 #include "sim/dynamics/implicit_midpoint.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
@@ -45,10 +48,14 @@ template <class Problem>
 constexpr bool has_gyroscopic_pair =
     requires(const typename Problem::Model& m, const typename Problem::State& x) { m.gyroscopic_pair(x); };
 
+template <class Problem>
+constexpr bool has_held_input_split = dynamics::HeldInputModel<typename Problem::Model>;
+
 // Which of our methods apply to the problem's model.
 template <class Problem>
 bool our_method_applies(std::string_view method) {
   if (method == "gyro-exponential") return has_gyroscopic_pair<Problem>;
+  if (method == "held-input-adams4") return has_held_input_split<Problem>;
   return method == "rk4" || method == "implicit-midpoint";
 }
 
@@ -62,6 +69,9 @@ IntegrationOutcome integrate_ours(std::string_view method, Problem& p, int subst
   if (method == "implicit-midpoint") return integrate_with<dynamics::ImplicitMidpoint>(p, substeps, out);
   if constexpr (has_gyroscopic_pair<Problem>) {
     if (method == "gyro-exponential") return integrate_with<dynamics::GyroscopicExponential>(p, substeps, out);
+  }
+  if constexpr (has_held_input_split<Problem>) {
+    if (method == "held-input-adams4") return integrate_with<dynamics::HeldInputAdams4>(p, substeps, out);
   }
   IntegrationOutcome o;
   o.error = "method " + std::string(method) + " does not apply to this plant";

@@ -58,6 +58,17 @@ struct CountedModel {
     model->derivative(t, x, dx);
   }
   void project(State& x) const { model->project(x); }
+  void derivative_without_inputs(double t, const State& x, State& g) const
+    requires requires(const M& m, State& dx) { m.derivative_without_inputs(t, x, dx); }
+  {
+    ++evaluations;
+    model->derivative_without_inputs(t, x, g);
+  }
+  void add_held_inputs(const State& x, State& dx) const
+    requires requires(const M& m, State& d) { m.add_held_inputs(x, d); }
+  {
+    model->add_held_inputs(x, dx);
+  }
   auto gyroscopic_pair(const State& x) const
     requires requires(const M& m) { m.gyroscopic_pair(x); }
   {

@@ -29,6 +29,17 @@ struct ShipInSeaOf {
   }
   void project(State&) const {}
 
+  // The input-affine split for dynamics::HeldInputAdams4: g with the held torque and brake off, and their
+  // part G(x) u = (command − brake β')/B on β'' (the same terms derivative() adds into M2).
+  void derivative_without_inputs(double t, const State& x, State& g) const {
+    ship.inputs.E = (*sea)(t);
+    ship.inputs.M2 = 0.0;
+    ship.derivative(t, x, g);
+  }
+  void add_held_inputs(const State& x, State& dx) const {
+    dx[3] += (command_Nm - brake_Nms * x[3]) / ship.params().B;
+  }
+
   // The gyroscopic pair of (14.8) for dynamics::GyroscopicExponential (the accuracy study's variant; the scene
   // runs rk4): H cosβ coupling over I(β) = A − Q sin²β and B, viscous d1 and d2 + brake.
   dynamics::GyroscopicPair gyroscopic_pair(const State& x) const {
