@@ -40,7 +40,6 @@ template <class Model>
 class HeldInputAdams4 {
  public:
   using State = typename Model::State;
-  static constexpr int N = Model::kStateSize;
   static constexpr const char* kName = "held-input-adams4";
 
   explicit HeldInputAdams4(const Model& model) : model_(model) {}
