@@ -42,7 +42,12 @@ class HeldInputAdams4 {
   using State = typename Model::State;
   static constexpr const char* kName = "held-input-adams4";
 
-  explicit HeldInputAdams4(const Model& model) : model_(model) {}
+  explicit HeldInputAdams4(const Model& model) : model_(model) {
+    for (int j = 0; j < 4; ++j) {  // never read before written; zeroed so no compiler has to prove it
+      g_[j].setZero();
+      x_[j].setZero();
+    }
+  }
 
   void step(double t, double h, State& x) {
     if (!(filled_ > 0 && h == h_ && x == x_next_)) filled_ = 0;  // not the continuation: start again
