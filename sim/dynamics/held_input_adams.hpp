@@ -9,15 +9,15 @@
 // being taken, so the extrapolated field is the one that acts now:
 //   x_{k+1} = x_k + h/24 (55 F_0 − 59 F_1 + 37 F_2 − 9 F_3),   F_j = g(t_{k−j}, x_{k−j}) + G(x_{k−j}) u_k.
 // What is left is the trajectory's kink at every input jump (x' jumps by G Δu, so g along it has a kinked
-// derivative): on the active ship 3.5e-9 rad against RK4's 3e-15 at one step per tick (docs/accuracy.md).
-// It is the cheapest method where that error is enough, not where round-off accuracy is asked for; the
-// half-step error estimate treats it as second order (the kink term), which overstates a smooth run's error.
+// derivative), a second-order error: in the active ship's accuracy study 1.5e-8 rad of roll at one step per
+// tick, against RK4's 6e-15 (docs/accuracy.md). It is the cheapest method where that error is enough, not
+// where round-off accuracy is asked for.
 //
 // Start-up and restarts: the first three steps, and any step whose state or step size is not the one the
 // previous step produced (a reset, a re-simulation from a saved state), are RK4 steps (their first stage is
-// the g_0 + G(x_0) u of the history, so a start-up step costs three more evaluations). Stability on a mode λ
-// is AB4's (step_validation.hpp): |hλ| ≤ 0.2 is inside its region along the imaginary axis and the negative
-// real axis; plants with a mode faster than that (end-stop contact, nutation) belong to another method.
+// the g_0 + G(x_0) u of the history, so a start-up step costs three more evaluations). Stability on a mode
+// λ is AB4's: the half disk |hλ| ≤ 0.2, Re hλ ≤ 0 lies inside its region (its real interval is (−0.3, 0));
+// plants with a mode faster than that (end-stop contact, nutation) belong to another method.
 // Inputs count: a held viscous brake is a mode too (the ship's safe-state brake, 667 1/s, is hλ = 0.67 at
 // 1 ms, outside the region), which is why this is the accuracy study's method and not a scene integrator.
 //

@@ -3,6 +3,8 @@
 //   x' = v,   v' = −ω² x − 2ζω v + u − b v,   u, b held over a tick (the input part u − b v is affine in x).
 // Reference: RK4 at tick/64 with the same held inputs (its error, ~(hω)⁴/64⁴ relative, is far below every
 // error compared here).
+#include "sim/dynamics/held_input_adams.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -10,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "sim/dynamics/held_input_adams.hpp"
 #include "sim/dynamics/rk4.hpp"
 
 namespace {
@@ -39,13 +40,23 @@ struct HeldOscillator {
 
 // Held inputs of tick k (t = k·10 ms): a command at the oscillator's own time scale plus a deterministic
 // "measurement noise" that makes it jump at every tick, as a controller's command does; a brake likewise.
-double noise(int k) { return std::sin(2.9 * k * k); }
-double command(int k) { return std::sin(0.006 * k) + 0.05 * noise(k); }
-double brake(int k) { return 0.2 + 0.02 * noise(k + 7); }
+double noise(int k) {
+  return std::sin(2.9 * k * k);
+}
+double command(int k) {
+  return std::sin(0.006 * k) + 0.05 * noise(k);
+}
+double brake(int k) {
+  return 0.2 + 0.02 * noise(k + 7);
+}
 
 using Inputs = double (*)(int);
-double zero(int) { return 0.0; }
-double one(int) { return 1.0; }
+double zero(int) {
+  return 0.0;
+}
+double one(int) {
+  return 1.0;
+}
 
 // Max |x − x_ref| over the tick boundaries of T = ticks·tick, each tick split into `sub` steps.
 template <class Step>
@@ -62,21 +73,23 @@ std::vector<double> positions(double tick, int ticks, int sub, Inputs uk, Inputs
 std::vector<double> reference(double tick, int ticks, Inputs uk, Inputs bk) {
   HeldOscillator m;
   Rk4<HeldOscillator> rk4(m);
-  return positions(tick, ticks, 64, uk, bk, [&](int, double u, double b, double t, double h, Eigen::Vector2d& x) {
-    m.u = u;
-    m.b = b;
-    rk4.step(t, h, x);
-  });
+  return positions(tick, ticks, 64, uk, bk,
+                   [&](int, double u, double b, double t, double h, Eigen::Vector2d& x) {
+                     m.u = u;
+                     m.b = b;
+                     rk4.step(t, h, x);
+                   });
 }
 
 std::vector<double> adams(double tick, int ticks, int sub, Inputs uk, Inputs bk) {
   HeldOscillator m;
   HeldInputAdams4<HeldOscillator> ab(m);
-  return positions(tick, ticks, sub, uk, bk, [&](int, double u, double b, double t, double h, Eigen::Vector2d& x) {
-    m.u = u;
-    m.b = b;
-    ab.step(t, h, x);
-  });
+  return positions(tick, ticks, sub, uk, bk,
+                   [&](int, double u, double b, double t, double h, Eigen::Vector2d& x) {
+                     m.u = u;
+                     m.b = b;
+                     ab.step(t, h, x);
+                   });
 }
 
 // Adams-Bashforth 4 with the derivative history as the plant saw it (each f_j with the input of its own
@@ -85,19 +98,20 @@ std::vector<double> adams_stale_history(double tick, int ticks, Inputs uk, Input
   HeldOscillator m;
   Rk4<HeldOscillator> rk4(m);
   Eigen::Vector2d f[4] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(),
-                         Eigen::Vector2d::Zero()};
+                          Eigen::Vector2d::Zero()};
   int n = 0;
-  return positions(tick, ticks, 1, uk, bk, [&](int, double u, double b, double t, double h, Eigen::Vector2d& x) {
-    m.u = u;
-    m.b = b;
-    for (int j = 3; j > 0; --j) f[j] = f[j - 1];
-    m.derivative(t, x, f[0]);
-    if (++n < 4) {
-      rk4.step(t, h, x);
-    } else {
-      x += h / 24.0 * (55.0 * f[0] - 59.0 * f[1] + 37.0 * f[2] - 9.0 * f[3]);
-    }
-  });
+  return positions(tick, ticks, 1, uk, bk,
+                   [&](int, double u, double b, double t, double h, Eigen::Vector2d& x) {
+                     m.u = u;
+                     m.b = b;
+                     for (int j = 3; j > 0; --j) f[j] = f[j - 1];
+                     m.derivative(t, x, f[0]);
+                     if (++n < 4) {
+                       rk4.step(t, h, x);
+                     } else {
+                       x += h / 24.0 * (55.0 * f[0] - 59.0 * f[1] + 37.0 * f[2] - 9.0 * f[3]);
+                     }
+                   });
 }
 
 double max_diff(const std::vector<double>& a, const std::vector<double>& b) {

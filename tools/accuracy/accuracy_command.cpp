@@ -59,7 +59,8 @@ StudyGrid ship_grid(bool quick) {
   StudyGrid g;
   g.reference_substeps = 8;
   if (quick) {
-    g.ours = {{"rk4", {1}}, {"held-input-adams4", {1, 2}}, {"gyro-exponential", {1, 2}}, {"implicit-midpoint", {1}}};
+    g.ours = {
+        {"rk4", {1}}, {"held-input-adams4", {1, 2}}, {"gyro-exponential", {1, 2}}, {"implicit-midpoint", {1}}};
     g.odeint_rk4_substeps = {1};
     g.odeint_dopri5_tolerances = {1e-8};
     g.cvode_bdf_tolerances = {1e-8};
