@@ -7,30 +7,19 @@
 #include <string_view>
 #include <vector>
 
-#include "tools/devices/scene_device.hpp"
+#include "tools/devices/registry.hpp"
+#include "tools/run/recorder.hpp"
+#include "tools/run/run_modes.hpp"
 
 namespace gyrostab::tools {
 namespace {
 
-constexpr DeviceEntry kDevices[] = {
-    {"ship_roll_damper", run_ship_roll_damper},
-    {"power_stabilizer", run_power_stabilizer},
-    {"monorail", run_monorail},
-    {"servo_gyro", run_servo_gyro},
-    {"gyro_vertical", run_gyro_vertical},
-    {"gyrocompass", run_gyrocompass},
-    {"inertial_platform", run_inertial_platform},
-    {"gyro_pendulum", run_gyro_pendulum},
-};
-
-// The entry of the scene's [scene] device; nullptr (the problem added to the reader) if there is none.
-const DeviceEntry* find_device(SceneReader& reader) {
+// The descriptor of the scene's [scene] device; nullptr (the problem added to the reader) if there is none.
+const DeviceDescriptor* find_device(SceneReader& reader) {
   const std::string device = reader.text("scene", "device", "", "device model");
-  for (const DeviceEntry& d : kDevices) {
-    if (device == d.name) return &d;
-  }
+  if (const DeviceDescriptor* d = tools::find_device(device)) return d;
   std::string known;
-  for (const DeviceEntry& d : kDevices) known += std::string(known.empty() ? "" : ", ") + d.name;
+  for (const DeviceDescriptor* d : devices()) known += std::string(known.empty() ? "" : ", ") + std::string(d->name);
   reader.fail("scene", "device", "= \"" + device + "\" is not a known device (" + known + ")");
   return nullptr;
 }
@@ -39,11 +28,25 @@ void print_problems(const SceneReader& reader) {
   for (const auto& e : reader.errors()) std::fprintf(stderr, "%s\n", e.c_str());
 }
 
+// Reads and checks the scene with its device's schema; [output] signals against the device's columns.
+std::unique_ptr<DeviceScene> read_scene(SceneReader& reader) {
+  const DeviceDescriptor* d = find_device(reader);
+  if (d == nullptr) return nullptr;
+  std::unique_ptr<DeviceScene> scene = d->read(reader);
+  if (scene == nullptr) return nullptr;
+  const std::string bad = Recorder::check_signals(scene->columns(), scene->loop().signals);
+  if (!bad.empty()) {
+    reader.fail("output", "signals", bad);
+    return nullptr;
+  }
+  return scene;
+}
+
 }  // namespace
 
 int run_scene(const RunRequest& req) {
   // A logging run reads the file once, so that the bus log's scene event holds exactly the text that ran.
-  if (!req.transport.log_path.empty() && req.scene_text.empty()) {
+  if ((!req.transport.log_path.empty() || !req.transport.can_log.empty()) && req.scene_text.empty()) {
     RunRequest with_text = req;
     std::ifstream f(req.scene_path, std::ios::binary);
     std::ostringstream text;
@@ -61,34 +64,28 @@ int run_scene(const RunRequest& req) {
     print_problems(reader);
     return 2;
   }
-  const DeviceEntry* d = find_device(reader);
-  if (d == nullptr) {
-    print_problems(reader);
-    return 2;
-  }
-  const int rc = d->run(reader, req);
+  std::unique_ptr<DeviceScene> scene = read_scene(reader);
   print_problems(reader);
-  if (rc == 0 && req.check_only) std::printf("%s: ok\n", req.scene_path.c_str());
-  if (rc == 0 && !req.check_only && req.write_outputs && req.role != Role::kController) {
-    std::printf("%s: wrote %s/report.json, signals.csv\n", req.scene_path.c_str(), req.out_dir.c_str());
-  }
-  if (rc == 2)
+  if (scene == nullptr) {
     std::fprintf(stderr, "%s: refused (%zu problem%s)\n", req.scene_path.c_str(), reader.errors().size(),
                  reader.errors().size() == 1 ? "" : "s");
+    return 2;
+  }
+  if (req.check_only) {
+    std::printf("%s: ok\n", req.scene_path.c_str());
+    return 0;
+  }
+  const int rc = run_device_scene(*scene, req);
+  if (rc == 0 && req.write_outputs && req.role != Role::kController) {
+    std::printf("%s: wrote %s/report.json, signals.csv\n", req.scene_path.c_str(), req.out_dir.c_str());
+  }
   return rc;
 }
 
 int check_scene_text(std::string_view text, const std::string& name, std::vector<std::string>* problems) {
   SceneReader reader;
-  RunRequest req;
-  req.scene_path = name;
-  req.check_only = true;
-  req.progress = false;
-  req.write_outputs = false;
   int rc = 2;
-  if (reader.parse(text, name)) {
-    if (const DeviceEntry* d = find_device(reader)) rc = d->run(reader, req);
-  }
+  if (reader.parse(text, name) && read_scene(reader) != nullptr) rc = 0;
   if (problems != nullptr) {
     problems->insert(problems->end(), reader.errors().begin(), reader.errors().end());
   } else {

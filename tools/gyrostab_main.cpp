@@ -10,6 +10,7 @@
 #include "tools/replay_command.hpp"
 #include "tools/run/link_cli.hpp"
 #include "tools/run/process_pair.hpp"
+#include "tools/scene/scene_keys.hpp"
 #include "hil/can/dbc_writer.hpp"
 
 int main(int argc, char** argv) {
@@ -98,7 +99,14 @@ int main(int argc, char** argv) {
       "dbc", "write the DBC file of the CAN FD bus (frame map: ids, lengths, signals, scaling, units, ranges)");
   dbc_cmd->add_option("--out", dbc_out, "file to write (default: standard output)");
 
+  CLI::App* keys_cmd =
+      app.add_subcommand("scene-keys", "print docs/scenes.md: every scene key of every device, from the field tables");
+
   CLI11_PARSE(app, argc, argv);
+  if (keys_cmd->parsed()) {
+    std::fputs(gyrostab::tools::scenes_markdown().c_str(), stdout);
+    return 0;
+  }
   if (dbc_cmd->parsed()) {
     const std::string text = gyrostab::can::dbc_text();
     std::FILE* f = dbc_out.empty() ? stdout : std::fopen(dbc_out.c_str(), "w");

@@ -54,7 +54,8 @@
 // moment H sinβ β' and the pitch reactions of the gyro go into the hull and are not modelled); roll
 // damping linear; case axis on the roll axis (the pivot's translational acceleration is neglected); rotor
 // spin constant (H fixed: no spin motor torque); the sea acts only through E(t).
-// Defaults: the digest's constructed ship (2000 t, GM 0.6 m, §3.2/§9.2) with the minimax brake d2 = 4.53e4.
+// Defaults: a constructed ship of 2000 t, GM 0.6 m (docs/models/ship-roll-damper.md), no precession brake
+// (the minimax brake of (14.18) for it is d2 = 4.53e4 N m s/rad).
 // Oracles: tests/oracle/ship_roll_damper_test.cpp — steady amplitudes vs (14.11), the invariant points
 // (14.18), the minimax d2, the locked ship (14.15), energy conservation with the large-angle terms and the
 // stops, and the stop's restitution e^-2.
@@ -75,9 +76,9 @@ struct ShipRollDamperParams {
   double B{1.5e4};                 // case + rotor about the case axis 2 [kg m²]
   double Q{0.0};                   // A^R + A^J − C^J of (10.4): I(β) = A − Q sin²β [kg m²]
   double q{1350.0};                // pendulous stiffness of the case G s [N m/rad]
-  double d2{4.53e4};               // viscous precession brake [N m s/rad]
+  double d2{0.0};                  // viscous friction of the precession bearing (+ a passive brake) [N m s/rad]
   double H{1.018e6};               // rotor spin momentum [N m s]
-  double beta_stop{1.2217};        // precession end stops ±70° [rad]
+  double beta_stop{std::numbers::pi / 180.0 * 70.0};  // precession end stops ±70° [rad]
   double stop_frequency{100.0};    // ω_s: k_s = B ω_s² [rad/s]
   double stop_damping_ratio{1.0};  // ζ_s: d_s = 2 ζ_s B ω_s [-]
   bool locked{false};              // case locked to the hull at its initial β (unstabilized ship)
@@ -109,6 +110,8 @@ class ShipRollDamper {
   static constexpr int kStateSize = 4;
   using State = Eigen::Matrix<double, 4, 1>;
   static constexpr const char* kName = "ship-roll-damper";
+  // The state's components, by name.
+  static constexpr int kRoll = 0, kPrecession = 1, kRollRate = 2, kPrecessionRate = 3;
 
   explicit ShipRollDamper(const ShipRollDamperParams& p = {})
       : p_(p),

@@ -1,11 +1,13 @@
-// `gyrostab accuracy SCENE [--out DIR]`: error against run time for a scene's plant (DESIGN §7). Records the
-// scene's closed-loop inputs, integrates the plant open loop with those inputs by our integrators and by the
-// peers (Boost.Odeint, SUNDIALS CVODE) over a grid of steps and tolerances, and writes the work-precision
-// table (stdout), accuracy.csv, report.json and work_precision.png. docs/accuracy.md explains the output.
+// `gyrostab accuracy SCENE [--out DIR]`: error against run time for a scene's plant (docs/accuracy.md).
+// Records the scene's closed-loop inputs, integrates the plant open loop with those inputs by our integrators
+// and by the peers (Boost.Odeint, SUNDIALS CVODE) over a grid of steps and tolerances, and writes the
+// work-precision table (stdout), accuracy.csv, report.json and work_precision.png. Which devices the study
+// takes, with their problem and grid: the registry's accuracy entries (tools/devices/<device>/*_study.cpp).
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
+
 
 namespace gyrostab::tools {
 

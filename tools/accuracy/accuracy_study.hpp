@@ -26,18 +26,10 @@
 #include "tools/accuracy/odeint_peer.hpp"
 #include "tools/accuracy/our_methods.hpp"
 #include "tools/accuracy/study_problem.hpp"
+#include "tools/accuracy/study_options.hpp"
 #include "tools/accuracy/study_result.hpp"
 
 namespace gyrostab::tools::accuracy {
-
-struct StudyGrid {
-  std::vector<std::pair<std::string, std::vector<int>>> ours;  // our method → sub-steps per tick
-  std::vector<int> odeint_rk4_substeps;
-  std::vector<double> odeint_dopri5_tolerances;
-  std::vector<double> cvode_bdf_tolerances;
-  std::vector<double> cvode_adams_tolerances;
-  int reference_substeps{64};  // rk4 at this and at twice this many steps per tick
-};
 
 inline double thread_cpu_seconds() {
   timespec ts{};
@@ -45,10 +37,6 @@ inline double thread_cpu_seconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-struct StudyOptions {
-  int repeats{3};
-  bool progress{true};  // one line per run on stderr
-};
 
 template <class Problem>
 IntegrationOutcome integrate_spec(const RunSpec& s, Problem& p, Trajectory<typename Problem::State>& out) {

@@ -1,6 +1,6 @@
 // Opening the CAN link of a plant or controller process (`gyrostab plant|controller SCENE --can-if IF`,
 // `gyrostab run SCENE --transport can`; docs/can.md):
-//   1. the device's nodes on the bus (can_nodes_of: the hardware each device has);
+//   1. the device's nodes on the bus (its descriptor's can_nodes: the hardware each device has);
 //   2. the bus-load check: one sensor set and one command set per controller tick, worst-case bit stuffing, at
 //      the configured bit rates (default 1 Mbit/s arbitration, 5 Mbit/s data); above 70 % the scene is refused
 //      (exit 2) with the numbers, before anything is sent;
@@ -23,33 +23,10 @@
 #include "hil/can/bus_load.hpp"
 #include "hil/can/can_endpoint.hpp"
 #include "hil/can/frame_map.hpp"
+#include "tools/devices/registry.hpp"
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {
-
-// The CAN nodes of each device's hardware (besides the sensor hub and the controller, always there). What a
-// device's sense() and its controller fill must lie on these nodes: the encoder refuses anything else
-// (tests/hil/can_closed_loop_test.cpp runs every shipped scene through it). A device not listed gets every
-// node, and then the bus-load check decides.
-inline can::NodeSet can_nodes_of(const std::string& device) {
-  struct Entry {
-    const char* device;
-    can::NodeSet nodes;
-  };
-  static constexpr Entry kNodes[] = {
-      {"ship_roll_damper", can::kNodeImu | can::kNodeDrive2},  // roll sensor; one precession axis (2)
-      {"monorail", can::kNodeImu | can::kNodeDrive2},          // car tilt sensor; gyro case axis (2)
-      {"power_stabilizer", can::kNodeDrive1 | can::kNodeDrive2},
-      {"servo_gyro", can::kNodeDrive1 | can::kNodeDrive2},
-      {"gyro_pendulum", can::kNodeDrive1 | can::kNodeDrive2},
-      {"gyro_vertical", can::kAllNodes},
-      {"gyrocompass", can::kAllNodes},
-      {"inertial_platform", can::kAllNodes},
-  };
-  for (const Entry& e : kNodes)
-    if (device == e.device) return e.nodes;
-  return can::kAllNodes;
-}
 
 inline std::string node_list(can::NodeSet n) {
   std::string s = "sensor_hub, controller";

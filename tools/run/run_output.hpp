@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "tools/run/closed_loop.hpp"
+#include "tools/run/loop_outcome.hpp"
 #include "tools/run/recorder.hpp"
 #include "tools/run/run_role.hpp"
 #include "tools/scene/loop_config.hpp"
@@ -33,17 +33,6 @@ struct RunRequest {
 // The "scene" and "timing" parts every device shares.
 nlohmann::json scene_summary(const LoopConfig& cfg, const std::string& scene_path);
 nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& outcome);
-
-// Runs the loop under the request's tick limit and hooks.
-template <class Device, class Sink = NoTickSink>
-LoopOutcome run_requested(Device& device, LoopConfig cfg, Recorder& rec, const RunRequest& req,
-                          Sink* sink = nullptr) {
-  if (req.ticks >= 0) cfg.duration_s = static_cast<double>(req.ticks) * cfg.tick_s();
-  if (req.before_loop) req.before_loop();
-  const LoopOutcome o = run_closed_loop(device, cfg, &rec, req.progress, sink);
-  if (req.after_loop) req.after_loop();
-  return o;
-}
 
 // Hands the report and CSV to the request (report_out, csv_out) and, if write_outputs, writes report.json,
 // signals.csv and (if cfg.plots) signals.png; returns false with `error` set.

@@ -230,6 +230,11 @@ std::vector<std::string> SceneReader::strings(std::string_view section, std::str
 
 std::string SceneReader::choice(std::string_view section, std::string_view key, std::string_view fallback,
                                 std::initializer_list<std::string_view> allowed, std::string_view what) {
+  return choice_of(section, key, fallback, std::span<const std::string_view>(allowed.begin(), allowed.size()), what);
+}
+
+std::string SceneReader::choice_of(std::string_view section, std::string_view key, std::string_view fallback,
+                                   std::span<const std::string_view> allowed, std::string_view what) {
   const std::string v = text(section, key, fallback, what);
   for (std::string_view a : allowed) {
     if (v == a) return v;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,11 +20,11 @@ namespace gyrostab::tools {
 struct Range {
   double lo{-1e308}, hi{1e308};
   bool lo_open{false}, hi_open{false};
-  static Range any() { return {}; }
-  static Range positive() { return {0.0, 1e308, true, false}; }
-  static Range non_negative() { return {0.0, 1e308, false, false}; }
-  static Range closed(double a, double b) { return {a, b, false, false}; }
-  static Range open_closed(double a, double b) { return {a, b, true, false}; }
+  static constexpr Range any() { return {}; }
+  static constexpr Range positive() { return {0.0, 1e308, true, false}; }
+  static constexpr Range non_negative() { return {0.0, 1e308, false, false}; }
+  static constexpr Range closed(double a, double b) { return {a, b, false, false}; }
+  static constexpr Range open_closed(double a, double b) { return {a, b, true, false}; }
   bool contains(double v) const;
   std::string describe() const;
 };
@@ -51,6 +52,8 @@ class SceneReader {
   bool flag(std::string_view section, std::string_view key, bool fallback, std::string_view what);
   std::string choice(std::string_view section, std::string_view key, std::string_view fallback,
                      std::initializer_list<std::string_view> allowed, std::string_view what);
+  std::string choice_of(std::string_view section, std::string_view key, std::string_view fallback,
+                        std::span<const std::string_view> allowed, std::string_view what);
   std::string text(std::string_view section, std::string_view key, std::string_view fallback, std::string_view what);
   // An array of strings; empty when the key is absent (a non-array or a non-string element is a problem).
   std::vector<std::string> strings(std::string_view section, std::string_view key, std::string_view what);

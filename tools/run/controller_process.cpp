@@ -1,7 +1,7 @@
 // The firmware controller as its own process (Role::kController, `gyrostab controller SCENE`): per tick k it
-// takes the sensor frame of tick k from the link, runs device.controller().step(k, frame or nullptr, out) —
-// the same call as in process — and publishes `out`. The process builds the whole device from the same
-// scene file as the plant and never touches the plant part.
+// takes the sensor frame of tick k from the link, runs controller.step(k, frame or nullptr, out) — the same
+// call as in process — and publishes `out`. The process builds the controller from the same scene file as
+// the plant; no plant exists in it.
 //
 // Sensor frames are screened in two places. Here: decodable (size, fingerprint), and for the expected tick
 // with an advancing sequence (hil/link/actuator_frame_check.hpp's FrameOrder): older ticks are "stale", an
@@ -15,8 +15,6 @@
 // still listening, then exits 6. Real time: see link_settings.hpp; a tick whose frame misses its deadline is
 // stepped with nullptr; silence for the receive timeout ends the run (exit 6).
 // Allocation-free after start-up (tests/alloc/lcm_loop_alloc_test.cpp).
-#pragma once
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -37,14 +35,16 @@
 #include "hil/rt/deadline_pacer.hpp"
 #include "hil/rt/rt_setup.hpp"
 #include "tools/log/stop_signal.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/run/can_link_setup.hpp"
+#include "tools/run/controller_port.hpp"
 #include "tools/run/link_report.hpp"
-#include "tools/run/can_link_setup.hpp"  // CAN FD (issue 7): FrameEndpoint<can::CanBusTransport>
 #include "tools/run/link_settings.hpp"
 #include "tools/run/link_stats.hpp"
+#include "tools/run/run_modes.hpp"
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {
+namespace {
 
 struct ControllerLinkOutcome {
   std::int64_t ticks_run{0};
@@ -126,21 +126,9 @@ SensorWait wait_for_sensor(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& o
   }
 }
 
-// The controller outputs the safe command: latched safe state, or still awaiting its first good frame.
-template <class Controller>
-bool in_safe_state(const Controller& c) {
-  if constexpr (requires { c.monitor_state(); }) {
-    return c.monitor_state() == firmware::MonitorState::kSafe ||
-           c.monitor_state() == firmware::MonitorState::kAwaitingFirstFrame;
-  } else {
-    return false;
-  }
-}
-
-template <class Device, class Transport>
-void run_controller_loop(Device& device, const LoopConfig& cfg, const RunRequest& req, const LinkSettings& s,
+template <class Transport>
+void run_controller_loop(ControllerPort& ctl, const LoopConfig& cfg, const RunRequest& req, const LinkSettings& s,
                          hil::FrameEndpoint<Transport>& ep, LinkStats& stats, ControllerLinkOutcome& link) {
-  auto& ctl = device.controller();
   const TransportOptions& t = req.transport;
   const std::int64_t ticks = cfg.ticks();
   hil::FrameOrder order;
@@ -199,7 +187,7 @@ void run_controller_loop(Device& device, const LoopConfig& cfg, const RunRequest
         ++ep.counters().missed_frames;
         ep.send(out, j * cfg.tick_ns / 1000);
         link.ticks_run = j + 1;
-        if (in_safe_state(ctl)) link.safe_state_tick = j;
+        if (ctl.in_safe_state()) link.safe_state_tick = j;
       }
       break;
     }
@@ -217,7 +205,7 @@ void run_controller_loop(Device& device, const LoopConfig& cfg, const RunRequest
       ++ep.counters().missed_frames;
     }
     ctl.step(static_cast<std::uint64_t>(k), got ? &frame : nullptr, out);
-    if (link.safe_state_tick < 0 && in_safe_state(ctl)) link.safe_state_tick = k;
+    if (link.safe_state_tick < 0 && ctl.in_safe_state()) link.safe_state_tick = k;
     const std::int64_t t_stepped = hil::monotonic_ns();
     if (const std::int64_t d = jitter.next(); d > 0) hil::spin_for(d);
     if (t.actuator_drop.covers(k)) {
@@ -251,11 +239,12 @@ void run_controller_loop(Device& device, const LoopConfig& cfg, const RunRequest
   }
 }
 
-template <class Device, class Transport>
-int run_controller_over(Device& device, const LoopConfig& loop_in, const RunRequest& req, Transport& transport,
+template <class Transport>
+int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transport& transport,
                         const nlohmann::json& link_info, const hil::RtSetup* rt) {
-  const LoopConfig& loop = loop_in;  // the scene's, for the report; run_loop: --ticks sets the loop's length
-  LoopConfig run_loop = loop_in;
+  const LoopConfig& loop = scene.loop();  // the scene's, for the report; run_loop: --ticks sets the loop's length
+  LoopConfig run_loop = loop;
+  std::unique_ptr<ControllerPort> ctl = scene.make_controller();
   if (req.ticks >= 0) run_loop.duration_s = static_cast<double>(req.ticks) * run_loop.tick_s();
   const LinkSettings s = link_settings(run_loop, req.transport);
   hil::FrameEndpoint<Transport> ep(transport);
@@ -267,20 +256,19 @@ int run_controller_over(Device& device, const LoopConfig& loop_in, const RunRequ
   StopSignalGuard stop_guard;
   {
     if (req.before_loop) req.before_loop();
-    run_controller_loop(device, run_loop, req, s, ep, *stats, link);
+    run_controller_loop(*ctl, run_loop, req, s, ep, *stats, link);
     if (req.after_loop) req.after_loop();
   }
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  auto& ctl = device.controller();
   nlohmann::json timing{{"ticks", link.ticks_run},
                         {"wall_s", wall_s},
                         {"ticks_per_second", wall_s > 0 ? static_cast<double>(link.ticks_run) / wall_s : 0.0}};
   timing.update(link_timing_json(*stats, s));
-  timing["controller"] = controller_report(ctl);
+  timing["controller"] = ctl->report();
   nlohmann::json l = link_info;
   l["role"] = "controller";
   l["counters"] = counters_json(ep.counters());
-  if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level (issue 7)
+  if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level
   l["missing_ticks"] = link.missing_ticks;
   l["safe_state_tick"] = link.safe_state_tick >= 0 ? nlohmann::json(link.safe_state_tick) : nlohmann::json();
   std::string happened = "completed";
@@ -332,24 +320,26 @@ int run_controller_over(Device& device, const LoopConfig& loop_in, const RunRequ
   return 0;
 }
 
-// Opens the link of the request and runs the controller over it (run_device.hpp dispatches Role::kController).
-template <class Device>
-int run_controller_process(Device& device, const LoopConfig& loop, const RunRequest& req) {
+}  // namespace
+
+// Opens the link of the request and runs the controller over it.
+int run_controller_process(const DeviceScene& scene, const RunRequest& req) {
+  const LoopConfig& loop = scene.loop();
   const TransportOptions& t = req.transport;
   hil::RtSetup rt;
   if (t.real_time) {
     rt = hil::setup_real_time(t.rt_priority);
     std::fprintf(stderr, "gyrostab controller: %s\n", rt.message.c_str());
   }
-  if (!t.can_if.empty()) {  // CAN FD over SocketCAN (issue 7, tools/run/can_link_setup.hpp, docs/can.md)
+  if (!t.can_if.empty()) {  // CAN FD over SocketCAN (tools/run/can_link_setup.hpp, docs/can.md)
     auto bus = std::make_unique<can::CanBusTransport>();
     nlohmann::json info;
     if (const int rc = open_can_link(*bus, loop, req, /*plant_side=*/false, info); rc != 0) return rc;
-    return run_controller_over(device, loop, req, *bus, info, t.real_time ? &rt : nullptr);
+    return run_controller_over(scene, req, *bus, info, t.real_time ? &rt : nullptr);
   }
   if (t.memory_bus != nullptr) {
     hil::MemoryTransport transport(t.memory_bus->to_plant, t.memory_bus->to_controller);
-    return run_controller_over(device, loop, req, transport, nlohmann::json{{"transport", "memory"}},
+    return run_controller_over(scene, req, transport, nlohmann::json{{"transport", "memory"}},
                                t.real_time ? &rt : nullptr);
   }
   if (!hil::valid_channel_suffix(t.channel_suffix)) {
@@ -373,7 +363,7 @@ int run_controller_process(Device& device, const LoopConfig& loop, const RunRequ
                             {"queue_capacity", hil::kLcmQueueCapacity},
                             {"timeout_ms", t.timeout_ms},
                             {"start_timeout_ms", t.start_timeout_ms}};
-  return run_controller_over(device, loop, req, *transport, info, t.real_time ? &rt : nullptr);
+  return run_controller_over(scene, req, *transport, info, t.real_time ? &rt : nullptr);
 }
 
 }  // namespace gyrostab::tools

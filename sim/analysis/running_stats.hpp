@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-namespace gyrostab::tools {
+namespace gyrostab::analysis {
 
 struct RunningStats {
   double sum_sq{0.0};
@@ -17,4 +17,4 @@ struct RunningStats {
   double rms() const { return n > 0 ? std::sqrt(sum_sq / static_cast<double>(n)) : 0.0; }
 };
 
-}  // namespace gyrostab::tools
+}  // namespace gyrostab::analysis

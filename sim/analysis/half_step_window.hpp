@@ -7,7 +7,8 @@
 // run's own integrator, once at the run's step — it must land on the run's states bit for bit, which proves
 // the capture complete (`reproduces_run`) — and once at half the step. For a method of order p the run's
 // error at each tick is estimated by Richardson's (x_h − x_{h/2}) · 2^p / (2^p − 1); the report gives its
-// largest magnitude over the window per state. Deterministic (no clock): identical run to run.
+// largest magnitude over the window per state. Deterministic (no clock): identical run to run. The report's
+// JSON of the estimate: tools/run/error_estimate_report.hpp.
 // Limits: it estimates the error the integrator adds over the window (started from the run's own state),
 // not the error accumulated before it; a window that the run does not reach is reported as such.
 #pragma once
@@ -16,13 +17,22 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <nlohmann/json.hpp>
-#include <string>
 #include <vector>
 
 #include "sim/dynamics/substepping.hpp"
 
-namespace gyrostab::tools::accuracy {
+namespace gyrostab::analysis {
+
+template <int N>
+struct HalfStepEstimate {
+  const char* integrator{""};
+  int order{0};
+  double step_s{0.0};
+  double window_start_s{0.0};
+  std::int64_t window_ticks{0};  // captured; 0: the run ended before the window
+  bool reproduces_run{false};    // the re-integration at the run's step landed on the run's states bit for bit
+  std::array<double, N> max_abs_error{};  // per state, Richardson-corrected
+};
 
 template <class Model, class Inputs>
 class HalfStepWindow {
@@ -52,22 +62,16 @@ class HalfStepWindow {
     captured_ = i + 1;
   }
 
-  // `apply(model, inputs)` sets a model copy's held inputs; `names` label the states in the report.
+  // `apply(model, inputs)` sets a model copy's held inputs; `order` is the integrator's.
   template <template <class> class Integrator, class Apply>
-  nlohmann::json estimate(const Model& model, Apply apply, std::int64_t tick_ns, int substeps, int order,
-                          const std::array<const char*, N>& names, const char* invariants) const {
-    nlohmann::json j{{"method", "half-step comparison over a sampled window"},
-                     {"invariants", invariants},
-                     {"integrator", Integrator<Model>::kName},
-                     {"order", order},
-                     {"step_s", 1e-9 * static_cast<double>(tick_ns) / substeps},
-                     {"window_start_s", 1e-9 * static_cast<double>(first_ * tick_ns)},
-                     {"window_ticks", captured_}};
-    if (captured_ == 0) {
-      j["available"] = false;
-      j["why"] = "the run ended before the window";
-      return j;
-    }
+  HalfStepEstimate<N> estimate(const Model& model, Apply apply, std::int64_t tick_ns, int substeps, int order) const {
+    HalfStepEstimate<N> e;
+    e.integrator = Integrator<Model>::kName;
+    e.order = order;
+    e.step_s = 1e-9 * static_cast<double>(tick_ns) / substeps;
+    e.window_start_s = 1e-9 * static_cast<double>(first_ * tick_ns);
+    e.window_ticks = captured_;
+    if (captured_ == 0) return e;
     std::vector<State> at_h, at_half;
     integrate<Integrator>(model, apply, tick_ns, substeps, at_h);
     integrate<Integrator>(model, apply, tick_ns, 2 * substeps, at_half);
@@ -81,13 +85,9 @@ class HalfStepWindow {
       }
     }
     const double richardson = std::ldexp(1.0, order) / (std::ldexp(1.0, order) - 1.0);
-    nlohmann::json e;
-    for (int c = 0; c < N; ++c) e[names[static_cast<std::size_t>(c)]] = richardson * worst[static_cast<std::size_t>(c)];
-    j["available"] = true;
-    j["reproduces_run"] = same;
-    j["max_abs_error"] = e;
-    if (!same) j["note"] = "the re-integration at the run's step did not land on the run's states: estimate unreliable";
-    return j;
+    for (int c = 0; c < N; ++c) e.max_abs_error[static_cast<std::size_t>(c)] = richardson * worst[static_cast<std::size_t>(c)];
+    e.reproduces_run = same;
+    return e;
   }
 
  private:
@@ -112,4 +112,4 @@ class HalfStepWindow {
   std::vector<State> states_;
 };
 
-}  // namespace gyrostab::tools::accuracy
+}  // namespace gyrostab::analysis

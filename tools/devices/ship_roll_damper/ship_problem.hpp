@@ -5,11 +5,11 @@
 // every stage: a fixed function of t for every method.
 // State x = [φ, β (rad), φ', β' (rad/s)].
 //
-// The right-hand side is the scene binding's ShipInSea, operation for operation (the study checks that the
+// The right-hand side is the scene plant's ShipInSea, operation for operation (the study checks that the
 // scene's integrator and step reproduce the closed-loop states bit for bit). It also offers the gyroscopic
 // pair of (14.8) — roll/precession coupling H cosβ and the dampings d1, d2 + brake:
 //   a = H cosβ/I(β), b = H cosβ/B, p = d1/I(β), q = (d2 + brake)/B
-// so our gyro-exponential integrator applies (the scene binding itself runs rk4).
+// so our gyro-exponential integrator applies (the scene's plant itself runs rk4).
 //
 // Error quantities (against the reference):
 //   roll_rad                  max over ticks of |Δφ|;
@@ -24,32 +24,26 @@
 #include <memory>
 
 #include "sim/dynamics/damped_gyroscopic_flow.hpp"
-#include "sim/random/seeded_rng.hpp"
+#include "sim/motion/sea_roll_moment.hpp"
+#include "sim/plants/ship_in_sea.hpp"
 #include "tools/accuracy/study_problem.hpp"
-#include "tools/devices/ship_in_sea.hpp"
-#include "tools/devices/ship_roll_damper_study.hpp"
+#include "tools/devices/ship_roll_damper/ship_roll_damper_study.hpp"
 
 namespace gyrostab::tools::accuracy {
 
-// E(t) of the scene (SeaMoment of ship_roll_damper_scene.cpp without its memo: a pure function of t).
+// E(t) of the scene's sea without its memo (every method pays the same per evaluation).
 class StudySea {
  public:
-  explicit StudySea(const ShipRollDamperStudySetup& s) : regular_(s.regular_sea), wave_(s.wave) {
-    if (!regular_) {
-      random::SeededRng rng(s.loop.seed, s.sea_stream);
-      sea_ = std::make_unique<motion::IrregularSea<256>>(motion::WaveSpectrum(s.spectrum), s.irregular, rng,
-                                                         motion::WaveRollMomentTransfer{s.ship.c, s.kappa});
-    }
-  }
-  double operator()(double t) const { return regular_ ? wave_(t) : (*sea_)(t); }
+  explicit StudySea(const ShipRollDamperStudySetup& s)
+      : sea_(s.scene.plant.sea, s.scene.loop.tick_s() / s.scene.loop.substeps,
+             random::SeededRng(s.scene.loop.seed, plants::ShipRollDamperPlant::kSeaStream), s.scene.plant.ship.c) {}
+  double operator()(double t) const { return sea_.value(t); }
 
  private:
-  bool regular_;
-  motion::RegularWaveMoment wave_;
-  std::unique_ptr<motion::IrregularSea<256>> sea_;
+  motion::SeaRollMoment sea_;
 };
 
-using ShipInStudySea = ShipInSeaOf<StudySea>;
+using ShipInStudySea = plants::ShipInSeaOf<StudySea>;
 
 class ShipProblem {
  public:
@@ -57,19 +51,20 @@ class ShipProblem {
   static constexpr int kStateSize = 4;
   using State = Model::State;
   static constexpr int kQuantities = 3;
+  static constexpr int kRoll = models::ShipRollDamper::kRoll, kPrecession = models::ShipRollDamper::kPrecession;
 
   explicit ShipProblem(const ShipRollDamperStudySetup& s)
-      : setup_(s), sea_(s), model_{models::ShipRollDamper(s.ship), &sea_, 0.0, 0.0} {}
+      : setup_(s), sea_(s), model_{models::ShipRollDamper(s.scene.plant.ship), &sea_, 0.0, 0.0} {}
 
   Model& model() { return model_; }
   void set_tick(std::int64_t k) {
-    const ShipRollDamperStudySetup::TickInputs& in = setup_.inputs[static_cast<std::size_t>(k)];
+    const plants::ShipRollDamperPlant::HeldInputs& in = setup_.inputs[static_cast<std::size_t>(k)];
     model_.command_Nm = in.command_Nm;
     model_.brake_Nms = in.brake_Nms;
   }
   State initial_state() const { return State::Zero(); }
   std::int64_t ticks() const { return static_cast<std::int64_t>(setup_.inputs.size()); }
-  std::int64_t tick_ns() const { return setup_.loop.tick_ns; }
+  std::int64_t tick_ns() const { return setup_.scene.loop.tick_ns; }
 
   std::array<Quantity, kQuantities> quantities() const {
     return {{{"roll_rad", "rad", "max over ticks of |d phi|"},
@@ -86,10 +81,10 @@ class ShipProblem {
         out[0] = out[1] = out[2] = INFINITY;
         return;
       }
-      roll = std::max(roll, std::abs(a[0] - b[0]));
-      precession = std::max(precession, std::abs(a[1] - b[1]));
-      ss_run += a[0] * a[0];
-      ss_ref += b[0] * b[0];
+      roll = std::max(roll, std::abs(a[kRoll] - b[kRoll]));
+      precession = std::max(precession, std::abs(a[kPrecession] - b[kPrecession]));
+      ss_run += a[kRoll] * a[kRoll];
+      ss_ref += b[kRoll] * b[kRoll];
     }
     const double n = static_cast<double>(run.size());
     out[0] = roll;
@@ -100,9 +95,9 @@ class ShipProblem {
   void scales(const Trajectory<State>& ref, double* out) const {
     double roll = 0.0, precession = 0.0, ss = 0.0;
     for (const State& x : ref) {
-      roll = std::max(roll, std::abs(x[0]));
-      precession = std::max(precession, std::abs(x[1]));
-      ss += x[0] * x[0];
+      roll = std::max(roll, std::abs(x[kRoll]));
+      precession = std::max(precession, std::abs(x[kPrecession]));
+      ss += x[kRoll] * x[kRoll];
     }
     out[0] = roll;
     out[1] = std::sqrt(ss / static_cast<double>(ref.size()));

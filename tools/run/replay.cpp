@@ -3,28 +3,28 @@
 // recorded actuator frame of the same tick byte for byte (memcmp of the whole ActuatorFrame). Nothing is
 // excluded from the comparison: the controllers stamp time_ns = tick · tick_ns (controller_runtime.hpp),
 // not a clock reading, so every field is deterministic; compute-time counters are not in the frame.
-// The controller is the one the scene builds (the log's scene event, or --scene); the plant is not used.
+// The controller is the one the scene builds (the log's scene event, or --scene); no plant is built.
 // As fast as possible, or paced at the scene's tick with --real-time.
 // Exit codes: replay_session.hpp (0 identical, 4 mismatch, 5 truncated/corrupt log, 2 nothing replayed).
-#pragma once
-
 #include <cstdio>
 #include <cstring>
 
 #include "tools/log/frame_diff.hpp"
-#include "tools/run/can_replay.hpp"  // candump logs of the CAN bus (issue 7)
+#include "tools/run/can_replay.hpp"
 #include "tools/run/replay_session.hpp"
+#include "tools/run/run_modes.hpp"
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {
 
-template <class Device>
-int replay_controller(Device& device, const LoopConfig& loop, const RunRequest& req) {
-  if (can::looks_like_candump_log(req.transport.replay_log)) return replay_controller_candump(device, loop, req);
+int replay_controller(const DeviceScene& scene, const RunRequest& req) {
+  const LoopConfig& loop = scene.loop();
+  std::unique_ptr<ControllerPort> ctl = scene.make_controller();
+  ControllerPort& controller = *ctl;
+  if (can::looks_like_candump_log(req.transport.replay_log)) return replay_controller_candump(controller, loop, req);
   ReplaySession session;
   int exit_code = 0;
   if (!session.open(loop, req, exit_code)) return exit_code;
-  auto& controller = device.controller();
   buslog::TickRecord t;
   msg::ActuatorFrame out{};
   std::int64_t ticks = 0;

@@ -7,24 +7,22 @@
 // reproduces the run. With write_outputs (--out DIR) the re-simulated run's report.json and signals.csv are
 // written as by `gyrostab run`.
 // Exit codes: replay_session.hpp (0 identical, 3 plant diverged, 4 mismatch, 5 truncated/corrupt log).
-#pragma once
-
 #include <array>
 #include <cstdio>
 #include <cstring>
 
+#include "hil/can/candump_log.hpp"
 #include "tools/log/frame_diff.hpp"
 #include "tools/run/closed_loop.hpp"
-#include "tools/run/controller_report.hpp"
-#include "hil/can/candump_log.hpp"
 #include "tools/run/replay_session.hpp"
+#include "tools/run/run_modes.hpp"
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {
 
-template <class Device>
-int resimulate_plant(Device& device, const LoopConfig& loop, const RunRequest& req) {
-  if (can::looks_like_candump_log(req.transport.replay_log)) {  // issue 7: candump logs are replayed, not re-simulated
+int resimulate_plant(const DeviceScene& scene, const RunRequest& req) {
+  const LoopConfig& loop = scene.loop();
+  if (can::looks_like_candump_log(req.transport.replay_log)) {  // candump logs are replayed, not re-simulated
     std::fprintf(stderr, "gyrostab: %s: --resimulate reads gyrostab bus logs (--log); a candump log replays into "
                  "the controller only (without --resimulate)\n", req.transport.replay_log.c_str());
     return 2;
@@ -32,8 +30,9 @@ int resimulate_plant(Device& device, const LoopConfig& loop, const RunRequest& r
   ReplaySession session;
   int exit_code = 0;
   if (!session.open(loop, req, exit_code)) return exit_code;
-  Recorder rec(Device::columns(), loop.ticks(), loop.record_every);
-  PlantTick<Device> plant(device, loop, &rec);
+  std::unique_ptr<PlantPort> device = scene.make_plant(PlantOptions{false, req.ticks});
+  Recorder rec(scene.columns(), loop.ticks(), loop.record_every);
+  PlantTick plant(*device, loop, &rec);
   msg::SensorFrame sensed{};
   buslog::TickRecord t;
   LoopOutcome outcome;
@@ -41,7 +40,7 @@ int resimulate_plant(Device& device, const LoopConfig& loop, const RunRequest& r
   int rc = -1;
   while ((s = session.next(t)) == buslog::ReadStatus::kOk) {
     const std::int64_t k = t.tick;
-    device.sense(k, sensed);
+    device->sense(k, sensed);
     if (std::memcmp(&sensed, &t.sensor, sizeof sensed) != 0) {
       std::fprintf(stderr,
                    "gyrostab: %s: MISMATCH at tick %lld (sensor event at byte %lld; the %lld ticks before it are "
@@ -66,10 +65,8 @@ int resimulate_plant(Device& device, const LoopConfig& loop, const RunRequest& r
   }
   outcome.wall_s = session.elapsed_s();
   if (req.write_outputs) {
-    nlohmann::json report{{"scene", scene_summary(loop, req.scene_path)},
-                          {"figures", device.figures()},
-                          {"timing", timing_summary(loop, outcome)},
-                          {"resimulated_from", session.log_path()}};
+    nlohmann::json report = plant_report(scene, *device, req, outcome);
+    report["resimulated_from"] = session.log_path();
     std::string error;
     if (!write_run_outputs(req, loop, rec, report, error)) {
       std::fprintf(stderr, "gyrostab: %s\n", error.c_str());

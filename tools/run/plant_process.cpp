@@ -1,12 +1,12 @@
 // The plant as its own process (Role::kPlant, `gyrostab plant SCENE`): the loop of run_closed_loop
 // (closed_loop.hpp) with the controller step replaced by an exchange over a link:
 //   sense(k) → publish SensorFrame{k} → wait for the ActuatorFrame of tick k → latency pipe → actuate → advance
-// The same device code in the same order as in process, and the frames cross the link bit for bit
+// The same plant code in the same order as in process (PlantTick), and the frames cross the link bit for bit
 // (hil/lcm/frame_codec.hpp), so a lockstep run is bit-identical to the in-process run of the same scene and
-// seed (tests/lcm/). The process builds the whole device (plant + controller) and never steps its controller.
+// seed (tests/lcm/). The process builds the plant only: no controller exists in it.
 //
 // Every received actuator frame is checked before use (hil/link/actuator_frame_check.hpp): decodable, finite,
-// within the device's limits (actuator_limits(), if the device has it), for the expected tick with an advancing
+// within the scene's limits (DeviceScene::actuator_limits()), for the expected tick with an advancing
 // sequence. A tick without an accepted command gets the drive watchdog's command (zero torque, brake released)
 // in its latency-pipe slot, as real drives do.
 // Lockstep: a frame rejected for its content (NaN, out of range) for the expected tick is followed by a grace
@@ -20,8 +20,6 @@
 //
 // Allocation-free after start-up: the endpoint's buffers, the statistics histograms and the recorder are
 // allocated before tick 0 (tests/alloc/lcm_loop_alloc_test.cpp).
-#pragma once
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -41,27 +39,16 @@
 #include "hil/rt/rt_setup.hpp"
 #include "tools/log/stop_signal.hpp"
 #include "tools/run/bus_log_sink.hpp"
+#include "tools/run/can_link_setup.hpp"
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/link_report.hpp"
-#include "tools/run/can_link_setup.hpp"  // CAN FD (issue 7): FrameEndpoint<can::CanBusTransport>
 #include "tools/run/link_settings.hpp"
 #include "tools/run/link_stats.hpp"
+#include "tools/run/run_modes.hpp"
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {
-
-// The device's command limits, if it states them (optional Device member `hil::ActuatorLimits
-// actuator_limits() const`); otherwise only finiteness and the brake range are checked.
-template <class Device>
-hil::ActuatorLimits actuator_limits_of(const Device& d) {
-  if constexpr (requires { d.actuator_limits(); }) {
-    hil::ActuatorLimits l = d.actuator_limits();
-    l.from_scene = true;
-    return l;
-  } else {
-    return hil::ActuatorLimits{};
-  }
-}
+namespace {
 
 // What happened to the link during a plant run (report.json "peer" and "drive_watchdog").
 struct PlantLinkOutcome {
@@ -127,18 +114,17 @@ CommandWait wait_for_command(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder&
   }
 }
 
-template <class Device, class Transport, class Sink = NoTickSink>
-LoopOutcome run_plant_loop(Device& device, const LoopConfig& cfg, const RunRequest& req, const LinkSettings& s,
-                           hil::FrameEndpoint<Transport>& ep, LinkStats& stats, PlantLinkOutcome& link,
-                           Recorder* recorder, Sink* sink = nullptr) {
+template <class Transport>
+LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& limits, const LoopConfig& cfg,
+                           const RunRequest& req, const LinkSettings& s, hil::FrameEndpoint<Transport>& ep,
+                           LinkStats& stats, PlantLinkOutcome& link, Recorder* recorder, TickSink* sink) {
   LoopOutcome out;
   const std::int64_t ticks = cfg.ticks();
   const int latency = cfg.latency_ticks;
-  const hil::ActuatorLimits limits = actuator_limits_of(device);
   const TransportOptions& t = req.transport;
   hil::FrameOrder order;
   JitterInjector jitter(s, cfg.seed);
-  PlantTick<Device> plant(device, cfg, recorder);
+  PlantTick plant(plant_port, cfg, recorder);
   msg::SensorFrame sensor{};
   msg::SensorFrame published{};
   msg::ActuatorFrame command{};
@@ -147,11 +133,9 @@ LoopOutcome run_plant_loop(Device& device, const LoopConfig& cfg, const RunReque
   std::int64_t stop_after = std::numeric_limits<std::int64_t>::max();
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t k = 0; k < ticks && k <= stop_after; ++k) {
-    if constexpr (Sink::kActive) {
-      if (sink != nullptr && sink->stop_requested()) {
-        out.interrupted = true;
-        break;
-      }
+    if (sink != nullptr && sink->stop_requested()) {
+      out.interrupted = true;
+      break;
     }
     if (stop_signal_received() != 0) {
       out.interrupted = true;
@@ -167,7 +151,7 @@ LoopOutcome run_plant_loop(Device& device, const LoopConfig& cfg, const RunReque
     const std::int64_t t_start = hil::monotonic_ns();
     stats.tick_started(t_start, s.period_ns);
 
-    device.sense(k, sensor);
+    plant_port.sense(k, sensor);
     published = sensor;
     const bool dropped = t.sensor_drop.covers(k);
     if (t.sensor_corrupt.covers(k)) {
@@ -225,11 +209,9 @@ LoopOutcome run_plant_loop(Device& device, const LoopConfig& cfg, const RunReque
     }
     if (handshake && s.real_time) epoch = t_got;  // tick 1 starts one period after the handshake
 
-    if constexpr (Sink::kActive) {
-      if (sink != nullptr && !sink->record(k, published, command)) {
-        out.interrupted = true;
-        break;
-      }
+    if (sink != nullptr && !sink->record(k, published, command)) {
+      out.interrupted = true;
+      break;
     }
     if (!plant.step(k, command, out)) break;
     const std::int64_t t_end = hil::monotonic_ns();
@@ -243,34 +225,32 @@ LoopOutcome run_plant_loop(Device& device, const LoopConfig& cfg, const RunReque
 // Opens the transport the request names (LCM, or the test's in-memory bus), runs the loop, writes the
 // outputs. Exit code: 0 ok; 2 bad options; 3 diverged / outputs or log not written / transport failed;
 // 6 the controller was lost (receive timeout); 128 + N stopped by signal N.
-template <class Device, class Transport>
-int run_plant_over(Device& device, const LoopConfig& loop_in, const RunRequest& req, Transport& transport,
+template <class Transport>
+int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& transport,
                    const nlohmann::json& link_info, const hil::RtSetup* rt) {
-  // As in process (run_device.hpp, run_requested): --ticks sets the loop's length only; the recorder, the
-  // report's scene block and the outputs keep the scene's own configuration.
-  const LoopConfig& loop = loop_in;
-  LoopConfig run_loop = loop_in;
+  // As in process: --ticks sets the loop's length only; the recorder, the report's scene block and the
+  // outputs keep the scene's own configuration.
+  const LoopConfig& loop = scene.loop();
+  LoopConfig run_loop = loop;
   if (req.ticks >= 0) run_loop.duration_s = static_cast<double>(req.ticks) * run_loop.tick_s();
-  if (const std::string bad = Recorder::check_signals(Device::columns(), loop.signals); !bad.empty()) {
-    std::fprintf(stderr, "%s: [output] signals: %s\n", req.scene_path.c_str(), bad.c_str());
-    return 2;
-  }
-  Recorder rec(Device::columns(), loop.ticks(), loop.record_every, loop.signals);
+  if (!signals_ok(scene, req)) return 2;
+  std::unique_ptr<PlantPort> plant = scene.make_plant(PlantOptions{false, req.ticks});
+  const hil::ActuatorLimits limits = scene.actuator_limits();
+  Recorder rec(scene.columns(), loop.ticks(), loop.record_every, loop.signals);
   const LinkSettings s = link_settings(run_loop, req.transport);
   hil::FrameEndpoint<Transport> ep(transport);
   auto stats = std::make_unique<LinkStats>();
   PlantLinkOutcome link;
   LoopOutcome outcome;
-  // --log FILE: the bus log (tools/run/bus_log_sink.hpp) as the loop's tick sink: it records the sensor frame
-  // the plant published and the command it used, per tick, as `gyrostab run --log` does in process.
+  // --log FILE: the bus log as the loop's tick sink: it records the sensor frame the plant published and the
+  // command it used, per tick, as `gyrostab run --log` does in process.
   const bool logging = !req.transport.log_path.empty();
-  buslog::BusLogWriter writer;
-  std::string log_error;
+  std::unique_ptr<BusLog> log;
+  LoggedRun logged;
   if (logging) {
-    buslog::SceneEvent scene;
-    if (!scene_event_of(loop, req, scene, log_error) ||
-        !writer.open(req.transport.log_path, scene, req.transport.channel_suffix, log_error)) {
-      std::fprintf(stderr, "gyrostab plant: %s\n", log_error.c_str());
+    log = std::make_unique<BusLog>();
+    if (!log->open(loop, req, logged.error)) {
+      std::fprintf(stderr, "gyrostab plant: %s\n", logged.error.c_str());
       return 3;
     }
   }
@@ -279,43 +259,22 @@ int run_plant_over(Device& device, const LoopConfig& loop_in, const RunRequest& 
   StopSignalGuard stop_guard;
   {
     if (req.before_loop) req.before_loop();
-    if (logging) {
-      BusLogSink sink{&writer};
-      outcome = run_plant_loop(device, run_loop, req, s, ep, *stats, link, &rec, &sink);
-      if (outcome.interrupted && link.stop_signal == 0) link.stop_signal = stop_signal_received();
-    } else {
-      outcome = run_plant_loop(device, run_loop, req, s, ep, *stats, link, &rec);
-    }
+    outcome = run_plant_loop(*plant, limits, run_loop, req, s, ep, *stats, link, &rec, log.get());
+    if (logging && outcome.interrupted && link.stop_signal == 0) link.stop_signal = stop_signal_received();
     if (req.after_loop) req.after_loop();
   }
-  nlohmann::json log_summary;
   if (logging) {
-    const bool write_failed = writer.failed();
-    buslog::EndEvent end = end_event_of(outcome, link.stop_signal);
-    if (link.peer_lost) {
-      end.reason = buslog::EndReason::kOther;
-      end.detail = "controller lost after tick " + std::to_string(link.lost_at_tick);
-    }
-    std::string close_error;
-    if (!writer.close(end, close_error)) log_error = close_error;
-    if (write_failed && log_error.empty()) log_error = "bus log " + req.transport.log_path + ": a write failed";
-    log_summary = {{"path", req.transport.log_path},
-                   {"events", writer.events_written()},
-                   {"ticks", outcome.ticks_run},
-                   {"complete", log_error.empty()},
-                   {"end", end.detail}};
+    logged.stop_signal = link.stop_signal;
+    log->close(outcome, logged,
+               link.peer_lost ? "controller lost after tick " + std::to_string(link.lost_at_tick) : std::string());
   }
-  nlohmann::json report{{"scene", scene_summary(loop, req.scene_path)},
-                        {"figures", device.figures()},
-                        {"timing", timing_summary(loop, outcome)}};
+  const std::string& log_error = logged.error;
+  nlohmann::json report = plant_report(scene, *plant, req, outcome);
   report["timing"].update(link_timing_json(*stats, s));
-  if constexpr (requires(const Device& d) { d.extra_timing(outcome); }) report["timing"].update(device.extra_timing(outcome));
-  if constexpr (requires(const Device& d) { d.report_extra(); }) report.update(device.report_extra());
-  const hil::ActuatorLimits limits = actuator_limits_of(device);
   nlohmann::json l = link_info;
   l["role"] = "plant";
   l["counters"] = counters_json(ep.counters());
-  if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level (issue 7)
+  if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level
   l["actuator_limits"] = limits.from_scene
                              ? nlohmann::json{{"torque_Nm", {limits.torque_Nm[0], limits.torque_Nm[1]}},
                                               {"voltage_V", {limits.voltage_V[0], limits.voltage_V[1]}},
@@ -344,7 +303,7 @@ int run_plant_over(Device& device, const LoopConfig& loop_in, const RunRequest& 
   if (rt != nullptr) l["real_time_setup"] = {{"sched_fifo", rt->fifo}, {"priority", rt->priority},
                                              {"mlockall", rt->memory_locked}, {"message", rt->message}};
   report["link"] = l;
-  if (logging) report["log"] = log_summary;
+  if (logging) report["log"] = logged.summary;
   std::string error;
   if (!write_run_outputs(req, loop, rec, report, error)) {
     std::fprintf(stderr, "gyrostab plant: %s\n", error.c_str());
@@ -376,24 +335,26 @@ int run_plant_over(Device& device, const LoopConfig& loop_in, const RunRequest& 
   return 0;
 }
 
-// Opens the link of the request and runs the plant over it (run_device.hpp dispatches Role::kPlant here).
-template <class Device>
-int run_plant_process(Device& device, const LoopConfig& loop, const RunRequest& req) {
+}  // namespace
+
+// Opens the link of the request and runs the plant over it.
+int run_plant_process(const DeviceScene& scene, const RunRequest& req) {
+  const LoopConfig& loop = scene.loop();
   const TransportOptions& t = req.transport;
   hil::RtSetup rt;
   if (t.real_time) {
     rt = hil::setup_real_time(t.rt_priority);
     std::fprintf(stderr, "gyrostab plant: %s\n", rt.message.c_str());
   }
-  if (!t.can_if.empty()) {  // CAN FD over SocketCAN (issue 7, tools/run/can_link_setup.hpp, docs/can.md)
+  if (!t.can_if.empty()) {  // CAN FD over SocketCAN (tools/run/can_link_setup.hpp, docs/can.md)
     auto bus = std::make_unique<can::CanBusTransport>();
     nlohmann::json info;
     if (const int rc = open_can_link(*bus, loop, req, /*plant_side=*/true, info); rc != 0) return rc;
-    return run_plant_over(device, loop, req, *bus, info, t.real_time ? &rt : nullptr);
+    return run_plant_over(scene, req, *bus, info, t.real_time ? &rt : nullptr);
   }
   if (t.memory_bus != nullptr) {
     hil::MemoryTransport transport(t.memory_bus->to_controller, t.memory_bus->to_plant);
-    return run_plant_over(device, loop, req, transport, nlohmann::json{{"transport", "memory"}},
+    return run_plant_over(scene, req, transport, nlohmann::json{{"transport", "memory"}},
                           t.real_time ? &rt : nullptr);
   }
   if (!hil::valid_channel_suffix(t.channel_suffix)) {
@@ -417,7 +378,7 @@ int run_plant_process(Device& device, const LoopConfig& loop, const RunRequest& 
                             {"queue_capacity", hil::kLcmQueueCapacity},
                             {"timeout_ms", t.timeout_ms},
                             {"start_timeout_ms", t.start_timeout_ms}};
-  return run_plant_over(device, loop, req, *transport, info, t.real_time ? &rt : nullptr);
+  return run_plant_over(scene, req, *transport, info, t.real_time ? &rt : nullptr);
 }
 
 }  // namespace gyrostab::tools

@@ -2,8 +2,9 @@
 // moment E(t) evaluated at every integrator stage (no zero-order hold on E), the firmware's precession torque
 // held over the tick and the precession brake acting as a viscous torque −brake β'. State as the model's:
 // [φ (rad), β (rad), φ' (rad/s), β' (rad/s)]. Sea: anything with `double operator()(double t) const` [N m].
-// One right-hand side for the scene binding, the accuracy study and the benchmarks, so the study integrates
-// the scene's plant operation for operation.
+// One right-hand side for the scene's plant (ship_roll_damper_plant.hpp), the accuracy study and the
+// benchmarks, so the study integrates the scene's plant operation for operation.
+// Docs: docs/models/ship-roll-damper.md.
 #pragma once
 
 #include <cmath>
@@ -11,7 +12,7 @@
 #include "sim/dynamics/damped_gyroscopic_flow.hpp"
 #include "sim/models/ship_roll_damper.hpp"
 
-namespace gyrostab::tools {
+namespace gyrostab::plants {
 
 template <class Sea>
 struct ShipInSeaOf {
@@ -24,7 +25,7 @@ struct ShipInSeaOf {
 
   void derivative(double t, const State& x, State& dx) const {
     ship.inputs.E = (*sea)(t);
-    ship.inputs.M2 = command_Nm - brake_Nms * x[3];
+    ship.inputs.M2 = command_Nm - brake_Nms * x[models::ShipRollDamper::kPrecessionRate];
     ship.derivative(t, x, dx);
   }
   void project(State&) const {}
@@ -37,17 +38,19 @@ struct ShipInSeaOf {
     ship.derivative(t, x, g);
   }
   void add_held_inputs(const State& x, State& dx) const {
-    dx[3] += (command_Nm - brake_Nms * x[3]) / ship.params().B;
+    dx[models::ShipRollDamper::kPrecessionRate] +=
+        (command_Nm - brake_Nms * x[models::ShipRollDamper::kPrecessionRate]) / ship.params().B;
   }
 
   // The gyroscopic pair of (14.8) for dynamics::GyroscopicExponential (the accuracy study's variant; the scene
   // runs rk4): H cosβ coupling over I(β) = A − Q sin²β and B, viscous d1 and d2 + brake.
   dynamics::GyroscopicPair gyroscopic_pair(const State& x) const {
     const models::ShipRollDamperParams& p = ship.params();
-    const double sb = std::sin(x[1]), cb = std::cos(x[1]);
+    const double beta = x[models::ShipRollDamper::kPrecession];
+    const double sb = std::sin(beta), cb = std::cos(beta);
     const double inertia = p.A - p.Q * sb * sb;
     return {p.H * cb / inertia, p.H * cb / p.B, p.d1 / inertia, (p.d2 + brake_Nms) / p.B};
   }
 };
 
-}  // namespace gyrostab::tools
+}  // namespace gyrostab::plants

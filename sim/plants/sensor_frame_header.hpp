@@ -1,0 +1,19 @@
+// The header of a plant's SensorFrame for tick k: publish and sample time on the plant's clock from the
+// integer tick, sequence = tick, every signal zero until the plant's sensors fill it.
+#pragma once
+
+#include <cstdint>
+
+#include "firmware/msg/sensor_frame.hpp"
+
+namespace gyrostab::plants {
+
+inline void begin_sensor_frame(msg::SensorFrame& f, std::int64_t tick, std::int64_t tick_ns) {
+  f = msg::SensorFrame{};
+  f.tick = static_cast<std::uint64_t>(tick);
+  f.time_ns = tick * tick_ns;
+  f.sample_time_ns = f.time_ns;
+  f.sequence = static_cast<std::uint32_t>(tick);
+}
+
+}  // namespace gyrostab::plants

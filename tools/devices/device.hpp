@@ -1,0 +1,66 @@
+// A device, as the run modes and the registry see it: its descriptor (name, scene schema, CAN nodes, the
+// accuracy study if it takes the device) and the scene it reads, which builds the plant and the controller
+// separately — the plant process builds no controller, the controller process and replay no plant.
+// Adding a device: docs/adding-a-device.md. The list of devices: tools/devices/registry.cpp.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hil/can/frame_map.hpp"
+#include "hil/link/actuator_frame_check.hpp"
+#include "tools/run/controller_port.hpp"
+#include "tools/run/plant_port.hpp"
+#include "tools/scene/loop_config.hpp"
+#include "tools/scene/scene_doc.hpp"
+#include "tools/scene/scene_reader.hpp"
+
+namespace gyrostab::tools {
+
+struct AccuracyRequest;
+
+// What the plant is built for.
+struct PlantOptions {
+  // The whole loop runs in this process (`gyrostab run` in process): a scene that compares a reduced model
+  // with its full model runs the full model first. Other modes build the plant alone.
+  bool in_process{true};
+  std::int64_t ticks{-1};  // the run's length when --ticks set it (< 0: the scene's duration)
+};
+
+// A device's scene, read and checked (every start-up check of the plant and of the controller passed).
+class DeviceScene {
+ public:
+  virtual ~DeviceScene() = default;
+
+  virtual const LoopConfig& loop() const = 0;
+  // The CSV columns the plant writes (Recorder; [output] signals picks from them).
+  virtual std::vector<std::string> columns() const = 0;
+  // The command limits a drive of this scene accepts (the plant side's check of every received frame).
+  virtual hil::ActuatorLimits actuator_limits() const { return hil::ActuatorLimits{}; }
+  // report.json "limits": the scene's physical limits in SI units, for the plot (tools/plot/LIMITS.md).
+  virtual nlohmann::json limits() const { return nlohmann::json::object(); }
+
+  // The plant may keep references into this scene: the scene outlives it.
+  virtual std::unique_ptr<PlantPort> make_plant(const PlantOptions& options) const = 0;
+  virtual std::unique_ptr<ControllerPort> make_controller() const = 0;
+};
+
+struct DeviceDescriptor {
+  std::string_view name;     // [scene] device
+  std::string_view summary;  // one paragraph for docs/scenes.md: what it models, the book's section
+  std::string_view figures;  // docs/scenes.md: what report.json's "figures" (and the device's own blocks) hold
+  // Reads and checks a scene (the reader holds every problem); nullptr when refused.
+  std::unique_ptr<DeviceScene> (*read)(SceneReader& reader);
+  // The scene keys, for docs/scenes.md (generated: tools/scene/scene_doc.hpp).
+  SceneDoc (*doc)();
+  // The nodes of the device's hardware on the CAN bus, besides the sensor hub and the controller.
+  can::NodeSet can_nodes;
+  // `gyrostab accuracy` on a scene of this device; nullptr: the study does not take it.
+  int (*accuracy)(SceneReader& reader, const AccuracyRequest& request){nullptr};
+};
+
+}  // namespace gyrostab::tools

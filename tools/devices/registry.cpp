@@ -1,0 +1,31 @@
+#include "tools/devices/registry.hpp"
+
+namespace gyrostab::tools {
+
+// The devices, one line each: the descriptor defined in tools/devices/<device>/<device>_device.cpp.
+#define GYROSTAB_DEVICES(X) \
+  X(kShipRollDamper)
+
+#define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
+#define GYROSTAB_ENTRY(d) &d,
+GYROSTAB_DEVICES(GYROSTAB_DECLARE)
+
+namespace {
+const DeviceDescriptor* const kDevices[] = {GYROSTAB_DEVICES(GYROSTAB_ENTRY)};
+}  // namespace
+
+std::span<const DeviceDescriptor* const> devices() { return kDevices; }
+
+const DeviceDescriptor* find_device(std::string_view name) {
+  for (const DeviceDescriptor* d : kDevices) {
+    if (d->name == name) return d;
+  }
+  return nullptr;
+}
+
+can::NodeSet can_nodes_of(std::string_view device) {
+  const DeviceDescriptor* d = find_device(device);
+  return d != nullptr ? d->can_nodes : can::kAllNodes;
+}
+
+}  // namespace gyrostab::tools

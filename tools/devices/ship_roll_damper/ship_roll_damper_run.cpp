@@ -1,0 +1,186 @@
+// What a ship roll damper run reports: the plant of sim/plants/ship_roll_damper_plant.hpp with its meters
+// (roll rms and peaks of the stabilized and the reference ship after the settling time, precession and torque
+// peaks, end-stop penetration against its bound, the half-step error estimate), the CSV columns, the figures,
+// and the scene's plant and controller for the run modes.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "firmware/platform/posix/monotonic_clock.hpp"
+#include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/running_stats.hpp"
+#include "tools/devices/ship_roll_damper/ship_roll_damper_scene.hpp"
+#include "tools/run/error_estimate_report.hpp"
+
+namespace gyrostab::tools {
+namespace {
+
+using Plant = plants::ShipRollDamperPlant;
+// Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
+using Controller = firmware::BasicShipRollDamperController<firmware::posix::MonotonicClock>;
+
+const std::vector<std::string>& columns() {
+  static const std::vector<std::string> c{"roll_rad",        "roll_unstabilized_rad", "precession_rad",
+                                          "roll_rate_rad_s", "precession_rate_rad_s", "wave_moment_Nm",
+                                          "precession_torque_Nm", "status_bits"};
+  return c;
+}
+
+class ShipRollDamperRun {
+ public:
+  explicit ShipRollDamperRun(const ShipRollDamperScene& s)
+      : s_(s),
+        plant_(s.plant, s.loop.plant_timing()),
+        settle_tick_(static_cast<std::int64_t>(s.settle_s / s.loop.tick_s())),
+        window_(std::min(settle_tick_, s.loop.ticks() / 2), static_cast<std::int64_t>(10.0 / s.loop.tick_s())) {}
+
+  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const msg::ActuatorFrame& cmd) {
+    last_ = cmd;
+    plant_.actuate(cmd);
+  }
+  void advance(std::int64_t tick) {
+    const Plant::HeldInputs in = plant_.held_inputs();
+    window_.before_tick(tick, plant_.state(), in);
+    plant_.advance_stabilized(tick);
+    window_.after_tick(tick, plant_.state());
+    plant_.advance_reference(tick);
+    if (tick + 1 >= settle_tick_) {
+      roll_.add(plant_.roll_rad());
+      roll_ref_.add(plant_.reference_roll_rad());
+    }
+    precession_peak_ = std::fmax(precession_peak_, std::fabs(plant_.precession_rad()));
+    torque_peak_ = std::fmax(torque_peak_, std::fabs(in.command_Nm));
+    roll_rate_peak_ = std::fmax(roll_rate_peak_, std::fabs(plant_.roll_rate_rad_s()));
+    precession_rate_peak_ = std::fmax(precession_rate_peak_, std::fabs(plant_.precession_rate_rad_s()));
+    penetration_peak_ = std::fmax(penetration_peak_, std::fabs(plant_.precession_rad()) - s_.plant.ship.beta_stop);
+  }
+  bool finite() const { return plant_.finite(); }
+
+  static constexpr int kGuardedStates = Plant::kGuardedStates;
+  static const char* state_name(int i) { return Plant::state_name(i); }
+  double state_value(int i) const { return plant_.state_value(i); }
+
+  void record(double* row) const {
+    const double t = 1e-9 * static_cast<double>((static_cast<std::int64_t>(last_.tick) + 1) * s_.loop.tick_ns);
+    row[0] = plant_.roll_rad();
+    row[1] = plant_.reference_roll_rad();
+    row[2] = plant_.precession_rad();
+    row[3] = plant_.roll_rate_rad_s();
+    row[4] = plant_.precession_rate_rad_s();
+    row[5] = plant_.wave_moment_Nm(t);
+    row[6] = last_.gimbal_torque_Nm[msg::kAxis2];
+    row[7] = static_cast<double>(last_.status);
+  }
+
+  nlohmann::json figures() const {
+    const double reduction = roll_ref_.rms() > 0 ? roll_.rms() / roll_ref_.rms() : 0.0;
+    return {{"roll_rms_rad", roll_.rms()},
+            {"roll_rms_unstabilized_rad", roll_ref_.rms()},
+            {"roll_reduction", reduction},
+            {"roll_max_rad", roll_.peak},
+            {"roll_max_unstabilized_rad", roll_ref_.peak},
+            {"precession_max_rad", precession_peak_},
+            {"precession_torque_max_Nm", torque_peak_},
+            {"wave_moment_rms_Nm", plant_.wave_moment_rms_Nm()},
+            {"statistics_from_s", s_.settle_s},
+            {"stop_penetration_max_rad", std::fmax(penetration_peak_, 0.0)},
+            {"stop_penetration_bound_rad", stop_penetration_bound()}};
+  }
+
+  // report.json "error_estimate": the stabilized ship over 10 s from the start of the statistics (or the
+  // run's middle, if shorter).
+  nlohmann::json error_estimate() const {
+    const auto apply = [](Plant::Dynamics& p, const Plant::HeldInputs& in) {
+      p.command_Nm = in.command_Nm;
+      p.brake_Nms = in.brake_Nms;
+    };
+    return error_estimate_json<4>(
+        window_.estimate<dynamics::Rk4>(plant_.dynamics(), apply, s_.loop.tick_ns, s_.loop.substeps, 4),
+        {"roll_rad", "precession_rad", "roll_rate_rad_s", "precession_rate_rad_s"},
+        "none watched: sea, brake, control and roll damping act");
+  }
+
+  // report.json "plant": what the loop assembled. The gyro is (14.8) with its large-angle terms — both
+  // inertias (roll A, case B), so nutation and precession; no reduced model is offered: for a ship gyro the
+  // two are not separated (ω_N = H/sqrt(AB) = 1.5 rad/s against the roll's 0.6 rad/s for the default ship,
+  // ε = O(1)), the condition under which precession theory P0 holds fails (docs/models/gimbal-gyro.md).
+  nlohmann::json report_extra() const {
+    const auto& p = s_.plant;
+    nlohmann::json parts = nlohmann::json::array({"ship roll + gyro case precession (14.8), large-angle terms",
+                                                  "precession end stops (spring-damper)",
+                                                  "locked reference ship in the same sea"});
+    if (p.ship.H == 0.0) parts[0] = "ship roll + gyro case (14.8) with H = 0: no gyroscopic coupling";
+    if (p.ship.w > 0.0) parts.push_back("wall-sided righting arm");
+    if (p.ship.d1 > 0.0 || p.ship.d2 > 0.0) parts.push_back("viscous roll / precession damping");
+    parts.push_back(p.sea.regular() ? "regular sea (14.9)" : "irregular sea");
+    if (p.sensors.noisy()) parts.push_back("sensor noise");
+    return {{"plant",
+             {{"model", models::ShipRollDamper::kName},
+              {"fidelity", "full (14.8): no reduced model (epsilon = O(1) for a ship gyro)"},
+              {"components", parts},
+              {"mechanical_states", 4},
+              {"reference_ship_states", 4},
+              {"state_size", 8},
+              {"device_bytes", sizeof(ShipRollDamperRun)},
+              {"integrator", "rk4"},
+              {"plant_substeps", s_.loop.substeps}}}};
+  }
+
+ private:
+  // Largest penetration of the end stops the run's peaks allow (models/ship_roll_damper.hpp: k_s = B ω_s²,
+  // ζ_s): the quasi-static push into the stop, (H |φ'|max + |M2|max + |Q| φ'²max/2)/k_s, plus the impact at
+  // |β'|max, whose largest excursion in a spring-damper is |β'|/ω_s, or |β'|/(e ω_s) for ζ_s ≥ 1 (the force is
+  // clipped at zero, which can only shorten the excursion; the pendulum moment q pushes out of the stop and
+  // is left out).
+  double stop_penetration_bound() const {
+    const auto& p = s_.plant.ship;
+    const double ks = p.B * p.stop_frequency * p.stop_frequency;
+    const double impact = precession_rate_peak_ / p.stop_frequency * (p.stop_damping_ratio >= 1.0 ? std::exp(-1.0) : 1.0);
+    const double inertial = 0.5 * std::abs(p.Q) * roll_rate_peak_ * roll_rate_peak_;  // |Q sinβ cosβ φ'²|
+    return (p.H * roll_rate_peak_ + torque_peak_ + inertial) / ks + impact;
+  }
+
+  const ShipRollDamperScene& s_;
+  Plant plant_;
+  std::int64_t settle_tick_;
+  msg::ActuatorFrame last_{};
+  analysis::RunningStats roll_, roll_ref_;
+  double precession_peak_{0.0}, torque_peak_{0.0};
+  double roll_rate_peak_{0.0}, precession_rate_peak_{0.0}, penetration_peak_{-1e300};
+  analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
+};
+
+class ShipRollDamperDeviceScene final : public DeviceScene {
+ public:
+  explicit ShipRollDamperDeviceScene(std::unique_ptr<ShipRollDamperScene> s) : s_(std::move(s)) {}
+
+  const LoopConfig& loop() const override { return s_->loop; }
+  std::vector<std::string> columns() const override { return tools::columns(); }
+  nlohmann::json limits() const override {
+    const auto& a = s_->controller.active;
+    nlohmann::json l{{"precession_stop_rad", s_->plant.ship.beta_stop},
+                     {"precession_torque_limit_Nm", a.torque_limit_Nm}};
+    if (s_->controller.mode == firmware::ShipRollDamperMode::kActive) l["precession_soft_limit_rad"] = a.beta_soft;
+    return l;
+  }
+  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
+    return make_plant_port<ShipRollDamperRun>(*s_);
+  }
+  std::unique_ptr<ControllerPort> make_controller() const override {
+    return make_controller_port<Controller>(s_->controller);
+  }
+
+ private:
+  std::unique_ptr<ShipRollDamperScene> s_;
+};
+
+}  // namespace
+
+std::unique_ptr<DeviceScene> make_ship_roll_damper_scene(std::unique_ptr<ShipRollDamperScene> s) {
+  return std::make_unique<ShipRollDamperDeviceScene>(std::move(s));
+}
+
+}  // namespace gyrostab::tools
