@@ -1,4 +1,4 @@
-// Servo gyro / control moment gyro drive (Magnus §14.4, digest gyro-devices.md §3.4): the motor on the inner
+// Servo gyro / control moment gyro drive (Magnus §14.4, docs/models/servo-gyro.md): the motor on the inner
 // axis 2 holds the gimbal rate β' at a reference Ω, and the gyroscopic reaction puts a torque on axis 1.
 //
 // Book: (14.41)  A α'' + H cosβ β' = M1,     B β'' − H cosβ α' = M2
