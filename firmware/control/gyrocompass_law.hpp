@@ -2,7 +2,7 @@
 // both from the level sensor on the rotor case (elevation of the rotor axis above the apparent horizon,
 // β_lvl = β + b^N/g), plus the tuning formulas the scene and the law use.
 //
-// Book: Magnus §13.2-13.3 (digest gyro-devices.md §2.2-§2.3):
+// Book: Magnus §13.2-13.3 (docs/models/gyrocompass.md):
 //   (13.8)   M1 = −f β   (damping / correction torque about the vertical),   M2 = −c β (pendulous torque)
 //   (13.9)   δ = f/H,  ω^c = c/H
 //   (13.12)  λ = −δ/2 ± i ω^K,  ω^K² = ω^E cosφ (ω^E cosφ + ω^c) − δ²/4
