@@ -1,5 +1,5 @@
 // Suspension point on a Kepler ellipse (free flight in a central Newtonian field) — Chelnokov §4, the
-// "Kepler motion of the suspension point" case (digest gyro-devices.md §6.8, §6.10 item 4): with gravity
+// "Kepler motion of the suspension point" case (docs/models/gyro-pendulum.md, Kepler oracle): with gravity
 // evaluated at O the apparent acceleration (specific force) a = w − g_grav is exactly zero, so a gyro
 // pendulum hung at O obeys z'' + ¼Ω²z = 0 with constant Ω = |L|/k (4.1).
 //
