@@ -1,4 +1,5 @@
-// Gear train between a gimbal torque motor and its gimbal axis (DESIGN §4 "gear ratio with reflected inertia").
+// Gear train between a gimbal torque motor and its gimbal axis ("gear ratio with reflected inertia",
+// docs/models/drives.md).
 //
 //   ω_m = N ω_axis,   θ_m = N θ_axis                       (N = motor turns per axis turn; N < 0 reverses)
 //   τ_axis = η N τ_m      when the motor delivers power (τ_m ω_m ≥ 0, including standstill)

@@ -1,4 +1,4 @@
-// Gimbal drive: the actuator of one gimbal axis, composed from its parts (DESIGN §4, issue 3 "Gimbal drive"):
+// Gimbal drive: the actuator of one gimbal axis, composed from its parts (docs/models/drives.md):
 //
 //   command (voltage, or torque for a current-regulated drive), enable
 //     → DcTorqueMotor: bus clip, PWM as ZOH, exact current over the step, current clamp   (dc_torque_motor.hpp)

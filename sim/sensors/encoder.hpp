@@ -1,5 +1,5 @@
 // Shaft angle encoder: the angle of a gimbal or motor shaft quantized to integer counts (the "encoder
-// quantization" of the gimbal drive, DESIGN §4).
+// quantization" of the gimbal drive, docs/models/drives.md).
 //
 //   q = (θ − θ0) · CPR / 2π
 //   count = ⌊q⌋ (kFloor: an edge counter reads the last edge passed; error θ − θ̂ ∈ [0, 1) LSB, mean ½ LSB)
