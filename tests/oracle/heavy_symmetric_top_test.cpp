@@ -77,7 +77,7 @@ TEST(LagrangeTopOracle, ReproducesDigestCaseL1RootsPeriodAndMeanPrecession) {
   const double u0 = std::cos(kTheta0);
   EXPECT_DOUBLE_EQ(lt::spin_parameter(kOracleParams, kOmega0), 6.25);
   const lt::TurningPoints r = lt::rest_spin_turning_points(kOracleParams, u0, kOmega0);
-  // Digest L1 prints 6 significant digits: tolerance = half a unit in the last digit.
+  // Reference L1 is given to 6 significant digits: tolerance = half a unit in the last digit.
   EXPECT_NEAR(r.u1, 0.842858, 5e-7);
   EXPECT_EQ(r.u2, u0);
   EXPECT_NEAR(lt::nutation_period(kOracleParams, r), 1.35176, 5e-6);
@@ -174,9 +174,10 @@ TEST(LagrangeTopOracle, SleepingTopFallsToTwoAMinusOneBelowThresholdAndStaysAbov
     EXPECT_NEAR(r.u2, 1.0, 1e-12) << a;
     EXPECT_NEAR(r.u3, std::max(1.0, 2.0 * a - 1.0), 1e-12) << a;
   }
-  // Digest (3.69) roots to first order in the kick energy ε = ½Aω_t² (A = Gs = 1): 1 + ε/(1 - a) and
-  // 2a - 1 - aε/(1 - a). The exact quadratic differs at second order, ~ε²/|1 - a|³ (measured 1.05e-9 at
-  // |1 - a| = 0.05, 1.3e-11 at 0.2): bound 4ε²/|1 - a|³. The first-order shift itself is 5e-7/|1 - a|.
+  // The (3.69) roots (lost in the book's scan; docs/models/rigid-bodies.md) to first order in the kick
+  // energy ε = ½Aω_t² (A = Gs = 1): 1 + ε/(1 - a) and 2a - 1 - aε/(1 - a). The exact quadratic differs at
+  // second order, ~ε²/|1 - a|³ (measured 1.05e-9 at |1 - a| = 0.05, 1.3e-11 at 0.2): bound 4ε²/|1 - a|³. The
+  // first-order shift itself is 5e-7/|1 - a|.
   const double wt = 1e-3, eps = 0.5 * wt * wt;
   for (double a : {0.8, 0.95, 1.05, 1.2}) {
     const lt::TurningPoints r = lt::kicked_sleeping_top_turning_points(kOracleParams, 4.0 * std::sqrt(a), wt);
@@ -409,7 +410,7 @@ TEST(HeavySymmetricTopL3, SleepingTopBelowThresholdFallsToTwoAMinusOne) {
     for (int m : {kRk4, kStrang, kYoshida4, kMidpoint}) {
       const Dip dip = sleeping_top_dip_for(m, a, 1.5 * half_period);
       EXPECT_NEAR(dip.min_cos_tilt, r.u1, u_bound[m]) << kMethodName[m] << " a = " << a;
-      // Digest table (sleeping.py): 0.60000 / 0.89999 for 2a - 1 = 0.6 / 0.9: the kick's shift (≤ 9.5e-6)
+      // Reference table L3: 0.60000 / 0.89999 for 2a - 1 = 0.6 / 0.9: the kick's shift (≤ 9.5e-6)
       // plus the integrator's error stay under 5e-5.
       EXPECT_NEAR(dip.min_cos_tilt, lt::sleeping_top_fall_cos_tilt(a), 5e-5)
           << kMethodName[m] << " a = " << a;
