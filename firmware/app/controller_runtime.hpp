@@ -46,6 +46,7 @@
 // Resources: the device, the monitor (one SensorFrame), a 2-task scheduler, two current loops; no heap, no
 // exceptions, no I/O. step() is O(1). Not copyable or movable (the scheduler holds `this`).
 // Tests: tests/unit/controllers_test.cpp.
+// Docs: docs/models/README.md#firmware
 #pragma once
 
 #include <cmath>

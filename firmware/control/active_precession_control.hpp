@@ -65,6 +65,7 @@
 // m s/rad, the minimax d2 of (14.11) for H_eff² = H (H + k_r) = 2 H² (peak roll 1.036 × static, passive
 // minimax 1.063 ×; computed from (14.11) off-line), limits ±60° soft / ±70° hard (the plant's default stops).
 // State: the braking direction (one int). O(1), no heap. Tests: tests/unit/control_laws_test.cpp.
+// Docs: docs/models/ship-roll-damper.md#firmware-laws
 #pragma once
 
 #include <cmath>

@@ -45,6 +45,7 @@
 // 3 multiplications and no division at run time (compile_pi precomputes).
 // Test: tests/unit/drive_loops_test.cpp (bandwidth, anti-windup timing vs none, limits, scheduler cascade),
 // tests/alloc/drive_alloc_test.cpp.
+// Docs: docs/models/drives.md#firmware-drive-loops
 #pragma once
 
 #include <cmath>

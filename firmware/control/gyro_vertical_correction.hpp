@@ -26,6 +26,7 @@
 // d1 d2/H², kept ≤ 0.5 (it is an algebraic loop in the precession theory: Δ = H² + d1 d2).
 // Tests: tests/unit/gyro_instrument_laws_test.cpp (each row's sign and value, cut-out, dead band, limits,
 // checks); tests/oracle/gyro_vertical_test.cpp (closed loop against (12.41)-(12.49)).
+// Docs: docs/models/gyro-vertical.md#firmware-law
 #pragma once
 
 #include <cmath>

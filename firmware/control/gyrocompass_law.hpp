@@ -14,6 +14,7 @@
 // Signals: reads β_lvl [rad]; writes M1, M2 [N m] clipped to ±torque_limit_Nm. Pure, O(1), no heap.
 // Sampled check (period T): f T/H ≤ 0.5 and c_e T/H ≤ 0.5 (precession per radian of tilt per control tick).
 // Tests: tests/unit/gyro_instrument_laws_test.cpp; closed loop tests/oracle/gyrocompass_test.cpp.
+// Docs: docs/models/gyrocompass.md#firmware-law
 #pragma once
 
 #include <cmath>

@@ -19,6 +19,7 @@
 // Sampled: d T / B ≤ 0.5 (sampled_loop_limits.hpp); defaults at 1 ms: 0.004.
 // State: none. O(1), no heap. Tests: tests/unit/control_laws_test.cpp (sign, saturation, window refusal on
 // both sides against the reference car's numbers).
+// Docs: docs/models/monorail.md#firmware-law
 #pragma once
 
 #include <cmath>

@@ -49,6 +49,7 @@
 // itself, so with d_c = 0 nothing changes here; a non-zero d_c acts on gimbal_rate_rad_s[kAxis1].
 // Resources: stateless (the configuration and the check are fixed at construction); compute() is O(1), no
 // heap, no exceptions, no I/O. Oracle: tests/oracle/power_stabilizer_test.cpp.
+// Docs: docs/models/power-stabilizer.md
 #pragma once
 
 #include <cmath>

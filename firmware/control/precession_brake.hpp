@@ -17,6 +17,7 @@
 // Signals: reads SensorFrame gimbal_rate_rad_s[kAxis2] = β' [rad/s]. Writes gimbal_torque_Nm[kAxis2] [N m].
 // Sampled: D = d2 must satisfy d2 T / B ≤ 0.5 (sampled_loop_limits.hpp); for the defaults at 1 ms 0.003.
 // State: none. O(1), no heap. Tests: tests/unit/control_laws_test.cpp (sign, saturation, check).
+// Docs: docs/models/ship-roll-damper.md#firmware-laws
 #pragma once
 
 #include <cmath>

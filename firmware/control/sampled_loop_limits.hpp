@@ -10,6 +10,7 @@
 // These are necessary conditions for the sampled law to behave like the continuous one the book analyses
 // (the gyroscopic coupling and the plant's own damping only move the limits a little for ω_N T ≪ 1); they
 // guard against a gain typed with the wrong unit or a period chosen far too long. O(1).
+// Docs: docs/models/README.md#firmware
 #pragma once
 
 namespace gyrostab::firmware {

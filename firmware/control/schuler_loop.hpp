@@ -25,6 +25,7 @@
 // check refuses ω_S T > 1e-2 (a period typed in the wrong unit).
 // Signals: reads θ_1, θ_2 [rad]; writes M_1, M_2 [N m] (clipped at ±torque_limit_Nm). O(1), no heap.
 // Tests: tests/unit/gyro_instrument_laws_test.cpp; closed loop tests/oracle/inertial_platform_test.cpp.
+// Docs: docs/models/inertial-platform.md#firmware-law
 #pragma once
 
 #include <cmath>

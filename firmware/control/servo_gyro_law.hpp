@@ -23,6 +23,7 @@
 // Sampled: k_p T / B ≤ 0.5 (sampled_loop_limits.hpp); defaults at 1 ms: 0.2.
 // State: the PI's integral I [N m] (PiState). O(1), no heap. Tests: tests/unit/control_laws_test.cpp (sign,
 // rate tracking on B β'' = M2 + H cosβ α', saturation and anti-windup, the torque-to-rate map).
+// Docs: docs/models/servo-gyro.md#firmware-law
 #pragma once
 
 #include <cmath>

@@ -27,6 +27,7 @@
 // (torque from the step-start speed): stable for h < 2J/b (gimbal_drive.hpp adds the back-EMF to b).
 // Test: tests/oracle/gimbal_drive_test.cpp (stuck exactly under a ramp below breakaway, slip above, finite-time
 // stop at J v0/τ_c with no sign change, Coulomb nutation decay (11.6)-(11.9) at a 1 ms step).
+// Docs: docs/models/drives.md#bearing-friction
 #pragma once
 
 #include <cmath>

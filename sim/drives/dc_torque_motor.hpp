@@ -42,6 +42,7 @@
 // Hot path: advance* are O(1) (≤ 3 exponentials, ≤ 2 logarithms), no heap. Disabled (bridge open): i = 0 at
 // once (the free-wheel transient, ≈ L|i|/U_max, is not modelled).
 // Test: tests/oracle/gimbal_drive_test.cpp (current rise, stall, clamp, held-speed bound).
+// Docs: docs/models/drives.md#dc-torque-motor
 #pragma once
 
 #include <algorithm>

@@ -15,6 +15,7 @@
 // included, so the scene builder adds reflected_inertia() to the axis inertia of the device model once, at
 // construction (see gimbal_drive.hpp for the GimbalGyro parameter to add it to).
 // Test: tests/oracle/gimbal_drive_test.cpp (acceleration τ N/(J_load + N² J_m), efficiency by power direction).
+// Docs: docs/models/drives.md#gear-train
 #pragma once
 
 #include <cmath>

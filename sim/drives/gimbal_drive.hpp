@@ -48,6 +48,7 @@
 // encoder counts are of the motor-shaft angle N θ_axis, wrapped to int32 as the contract carries them.
 // Hot path: step() O(1), no heap; the probe costs two model derivatives.
 // Test: tests/oracle/gimbal_drive_test.cpp, tests/alloc/drive_alloc_test.cpp.
+// Docs: docs/models/drives.md#gimbal-drive-composition-and-its-coupling-to-a-device
 #pragma once
 
 #include <cmath>

@@ -6,6 +6,7 @@
 //
 // A state vector stores the quaternion as Eigen's coefficient order (x, y, z, w), so
 // Eigen::Map<Eigen::Quaterniond> views it without a copy.
+// Docs: docs/models/integrators.md#methods
 #pragma once
 
 #include <Eigen/Geometry>

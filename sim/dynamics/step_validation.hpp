@@ -15,6 +15,7 @@
 //   amplitude:   on lightly damped modes (|Re λ| ≤ 0.1 |Im λ|) the numerical amplitude factor
 //                (|R| / |e^z|)^(keep_time/h) stays within amplitude_tolerance of 1
 //                (default: within 1e-3 over 10 s, the foundation's nutation-damping test).
+// Docs: docs/models/integrators.md#step-validation-step_validationhpp
 #pragma once
 
 #include <Eigen/Eigenvalues>

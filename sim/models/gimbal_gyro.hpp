@@ -22,6 +22,7 @@
 // Oracles: tests/oracle/gimbal_gyro_test.cpp — quartic (10.14), kinetic drift (4.67), viscous nutation
 // decay (A d2 + B d1)/(2AB), Coulomb linear decay (§11.2.2), torque-step transient
 // (docs/models/gimbal-gyro.md#precession-model-p0).
+// Docs: docs/models/gimbal-gyro.md#full-model
 #pragma once
 
 #include <cmath>

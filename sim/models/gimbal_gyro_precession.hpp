@@ -14,6 +14,7 @@
 // Coulomb friction is not modelled here (the precession-with-Coulomb case (11.16) would need a set-valued
 // solve).
 // Oracle: tests/oracle/gimbal_gyro_test.cpp compares it with the full model and reports ε beside the error.
+// Docs: docs/models/gimbal-gyro.md#precession-model-p0
 #pragma once
 
 #include <cmath>

@@ -23,6 +23,7 @@
 // per step (the motion generators cost more than the model).
 // Oracles: through the devices (tests/oracle/gyro_vertical_test.cpp, gyrocompass_test.cpp,
 // rate_integrating_gyro_test.cpp).
+// Docs: docs/models/gyro-vertical.md#the-master-equation-102
 #pragma once
 
 #include <cmath>

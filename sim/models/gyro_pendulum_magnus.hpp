@@ -22,6 +22,7 @@
 // (ω^N/|ω^P| ≈ 2e5 for the tuned reference instrument). Without spin (H = 0) use dynamics::Rk4.
 // Closed forms: sim/oracles/schuler_tuning.hpp ((12.60), (12.61), (12.66)-(12.68), −Hw/(kR)).
 // Oracles: tests/oracle/gyro_pendulum_magnus_test.cpp.
+// Docs: docs/models/gyro-pendulum.md#magnuss-small-angle-form
 #pragma once
 
 #include <cmath>

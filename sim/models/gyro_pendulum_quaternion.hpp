@@ -32,6 +32,7 @@
 // Oracles: tests/oracle/chelnokov_test.cpp — (1.3)/(1.4)/(4.1) residuals on a 3-D rigid-body run,
 // κ/λ/z forms giving the same motion, unperturbability (2.5), energy integral (2.11), stability (2.14),
 // Kepler oscillator (§4); cross-check with Magnus (12.58) in tests/oracle/gyro_pendulum_cross_test.cpp.
+// Docs: docs/models/gyro-pendulum.md#chelnokovs-quaternion-form
 #pragma once
 
 #include <cmath>

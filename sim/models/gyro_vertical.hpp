@@ -40,6 +40,7 @@
 // Oracle: tests/oracle/gyro_vertical_test.cpp — steady-turn equilibrium z_G (12.47), resonance at ω = −ω^P,
 // the δ = 0 and astatic limits (12.48)-(12.49), the deceleration response (12.41)-(12.42), linear-correction
 // decay (corrected pairing, see firmware/control/gyro_vertical_correction.hpp), full vs precession form.
+// Docs: docs/models/gyro-vertical.md#the-gyro-vertical
 #pragma once
 
 #include <algorithm>

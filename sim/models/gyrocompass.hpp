@@ -40,6 +40,7 @@
 // Oracle: tests/oracle/gyrocompass_test.cpp — equilibrium (13.11), eigenvalues/period and decay (13.12),
 // strong-coupling period (13.16), speed deviation (13.23), zero ballistic deviation when Schuler-tuned
 // (13.26) and the predicted swing when not, rolling error (13.38).
+// Docs: docs/models/gyrocompass.md
 #pragma once
 
 #include <cmath>

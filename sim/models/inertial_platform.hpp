@@ -43,6 +43,7 @@
 // Oracle: tests/oracle/inertial_platform_test.cpp — servo offsets (16.2), stability bound (16.5), Schuler
 // period (16.38)/(16.44), error curves for an initial tilt (16.46)-(16.47) and a gyro drift (16.49)-(16.50),
 // level under vehicle acceleration when tuned (16.34), untuned growth (16.48).
+// Docs: docs/models/inertial-platform.md
 #pragma once
 
 #include <cmath>

@@ -45,6 +45,7 @@
 // Oracle: tests/oracle/monorail_test.cpp — growth rates just inside/outside the gain window
 // d(c + Aω_P²)/H < k < d(c + Aω_N²)/H vs the roots of (14.3); curve running with c > HΩ3 > q (14.7)
 // overturns at the rate of (14.6)'s positive root; energy conservation with the large-angle terms.
+// Docs: docs/models/monorail.md
 #pragma once
 
 #include <Eigen/Core>

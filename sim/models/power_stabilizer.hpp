@@ -59,6 +59,7 @@
 //   the roots of (14.23), the gain boundary (14.25), constant disturbances (14.21), the back-EMF bound
 //   (14.30) with the reflected inertia, and the platform frequency (14.37) and ratio (14.33) of the elastic
 //   option.
+// Docs: docs/models/power-stabilizer.md
 #pragma once
 
 #include <Eigen/Core>

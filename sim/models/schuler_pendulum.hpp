@@ -26,6 +26,7 @@
 // Oracles: tests/oracle/schuler_pendulum_test.cpp — unperturbability for I1 = I2 = m l R under arbitrary
 // manoeuvres (Chelnokov (2.5)), the period (12.60) for rod/sphere/4A = 3C, mistuned swing period;
 // tests/oracle/gyro_pendulum_cross_test.cpp — same motion as Magnus (12.58) and Chelnokov (1.3).
+// Docs: docs/models/gyro-pendulum.md#the-3-d-body-schuler_pendulumhpp
 #pragma once
 
 #include <cmath>

@@ -37,6 +37,7 @@
 // Oracle: tests/oracle/servo_gyro_test.cpp — torque gain 1/α_A (14.44) at resonance (α_A = 5.7° → ×10.05),
 // the general gain 2/(α_A(1 + |sin φ|)) off resonance, motor power = oscillator dissipation, and energy
 // conservation in the torque-driven mode.
+// Docs: docs/models/servo-gyro.md
 #pragma once
 
 #include <Eigen/Core>

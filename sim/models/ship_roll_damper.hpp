@@ -59,6 +59,7 @@
 // Oracles: tests/oracle/ship_roll_damper_test.cpp — steady amplitudes vs (14.11), the invariant points
 // (14.18), the minimax d2, the locked ship (14.15), energy conservation with the large-angle terms and the
 // stops, and the stop's restitution e^-2.
+// Docs: docs/models/ship-roll-damper.md
 #pragma once
 
 #include <Eigen/Core>

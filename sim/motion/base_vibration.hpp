@@ -13,6 +13,7 @@
 // (use prescribed_base_rotation.hpp). Stateless, allocation-free, K sin/cos per call.
 // Test: tests/unit/base_motion_generators_test.cpp (a_B = second derivative of the displacement; up_B
 // offset).
+// Docs: docs/models/suspension-motion.md#vibration
 #pragma once
 
 #include <array>

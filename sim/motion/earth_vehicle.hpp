@@ -39,6 +39,7 @@
 // ~40 trig calls (+ 8 per 0.5 rad of arc for an accelerating great-circle leg, Gauss-Legendre for ∫ sinφ).
 // Test: tests/unit/earth_vehicle_test.cpp (finite differences of positions and quaternions against the
 // analytic velocities, accelerations and angular velocities; (16.51); Darboux relations of Chelnokov §2.4).
+// Docs: docs/models/suspension-motion.md#vehicle-over-the-rotating-earth
 #pragma once
 
 #include <algorithm>

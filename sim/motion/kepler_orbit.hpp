@@ -14,6 +14,7 @@
 // Parameters: GM [m³/s²] > 0, a [m] > 0, 0 ≤ e < 1 (parabolic and hyperbolic flight are not provided),
 // angles [rad]. Stateless, allocation-free, deterministic. Test: tests/unit/kepler_orbit_test.cpp
 // (differences of position and attitude; energy and angular momentum; period).
+// Docs: docs/models/suspension-motion.md#kepler-orbit
 #pragma once
 
 #include <cmath>

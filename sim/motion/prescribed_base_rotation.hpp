@@ -20,6 +20,7 @@
 // from ±90° is not required (no Euler-rate inversion is done). Stateless, allocation-free, 3K+6 sin/cos per
 // call. Test: tests/unit/base_motion_generators_test.cpp (ω_B and ω̇_B against finite differences of the
 // attitude).
+// Docs: docs/models/suspension-motion.md#base-at-rest-and-prescribed-rotation
 #pragma once
 
 #include <array>

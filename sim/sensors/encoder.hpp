@@ -11,6 +11,7 @@
 // (angle of count 0) [rad]; mode; rounding. A non-finite angle reads as count 0 (no undefined conversion);
 // |q| is clamped to 2⁶² counts. Stateless, allocation-free.
 // Test: tests/unit/sensors_test.cpp (exact counts at and around every edge of a sweep, wrap, offset).
+// Docs: docs/models/rate-gyros.md#measurement-chain
 #pragma once
 
 #include <cmath>

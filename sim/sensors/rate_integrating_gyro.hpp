@@ -28,6 +28,7 @@
 // (15.16), (15.19); free-motion frequency and damping of (15.2); the I-gyro time constant (15.14); −3 dB
 // bandwidth of the P-gyro from the transfer function; the turn-indicator reading (15.6).
 // Hot path: update() is allocation-free, O(substeps).
+// Docs: docs/models/rate-gyros.md#single-degree-of-freedom-gyro-magnus-151-153
 #pragma once
 
 #include <cmath>

@@ -22,6 +22,7 @@
 // State: y [input unit], ẏ [input unit/s] (second order). Parameters: order, f_bw [Hz] > 0, ζ [-] > 0, T [s]
 // > 0. Hot path: update() is 1 (first order) or 4 multiply-adds, allocation-free. Test:
 // tests/unit/sensors_test.cpp.
+// Docs: docs/models/rate-gyros.md#measurement-chain
 #pragma once
 
 #include <cmath>
