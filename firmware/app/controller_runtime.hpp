@@ -9,8 +9,9 @@
 //   c.step(tick, frame_or_nullptr, out);   // once per base tick
 //   c.control_counters(), c.fault_counters(), ...   // for the run report
 //
-// Ticks and rates (DESIGN §2). The base tick is the period at which step() is called, a SensorFrame is
-// expected and an ActuatorFrame is published: T_b = tick_period_ns. Tasks, in this order within a tick:
+// Ticks and rates (docs/architecture.md, the loop). The base tick is the period at which step() is called, a
+// SensorFrame is expected and an ActuatorFrame is published: T_b = tick_period_ns. Tasks, in this order
+// within a tick:
 //   control  every control_divisor ticks, phase 0: the control law, period T_c = control_divisor · T_b
 //   drive    every drive_divisor ticks, phase 0 (only when the drive is enabled): the current loops,
 //            period T_d = drive_divisor · T_b
@@ -45,6 +46,7 @@
 // Resources: the device, the monitor (one SensorFrame), a 2-task scheduler, two current loops; no heap, no
 // exceptions, no I/O. step() is O(1). Not copyable or movable (the scheduler holds `this`).
 // Tests: tests/unit/controllers_test.cpp.
+// Docs: docs/models/README.md#firmware
 #pragma once
 
 #include <cmath>

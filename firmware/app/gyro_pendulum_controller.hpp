@@ -10,6 +10,7 @@
 // Writes (ActuatorFrame): gimbal_torque_Nm[kAxis1] = gimbal_torque_Nm[kAxis2] = 0, precession_brake = 0
 // (the runtime's safe state sets 1, which the plant ignores: an instrument has no brake).
 // No drive, no state, no heap; cross-compiles for the Cortex-M4F target.
+// Docs: docs/models/gyro-pendulum.md
 #pragma once
 
 #include "firmware/app/controller_runtime.hpp"

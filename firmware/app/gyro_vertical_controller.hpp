@@ -16,6 +16,7 @@
 // ignores: zero torque leaves a free gyro that holds its attitude); status kCorrectionCutOut,
 // kInstrumentTorqueLimited + the runtime's.
 // No drive (torque-mode torquers). Rates: the law every control_divisor base ticks.
+// Docs: docs/models/gyro-vertical.md#firmware-law
 #pragma once
 
 #include <cmath>

@@ -14,6 +14,7 @@
 // (about the east axis) [N m]; precession_brake = 0 (no brake; in the safe state the runtime's 1 is ignored
 // by the plant: zero torque, the sphere keeps only its mechanical pendulosity); status
 // kInstrumentTorqueLimited + the runtime's.
+// Docs: docs/models/gyrocompass.md#firmware-law
 #pragma once
 
 #include <cmath>

@@ -20,6 +20,7 @@
 // safe state's 1 is ignored by the plant, its zero torques leave the platform holding inertial attitude);
 // status kInstrumentTorqueLimited + the runtime's.
 // Introspection for the run report: velocity_estimate(i) = R ω_cmd,i [m/s] (in-process runs).
+// Docs: docs/models/inertial-platform.md#firmware-law
 #pragma once
 
 #include <cmath>

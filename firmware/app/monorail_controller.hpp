@@ -12,6 +12,7 @@
 // monorail fault); motor_voltage_V[kAxis2] from the current loop when the drive is enabled;
 // status bit kAxis2TorqueSaturated + the runtime's.
 // Rates: the law every control_divisor base ticks (stateless, no dt), the drive every drive_divisor ticks.
+// Docs: docs/models/monorail.md#firmware-law
 #pragma once
 
 #include <cstdint>

@@ -13,6 +13,7 @@
 // ConfigCheck for refused gains: reason = GainCheck::reason, value = the gain margin σ_max (< 1 when
 // refused), upper = k_max_equal (torque mode) or r_max (voltage mode); the full GainCheck via gain_check().
 // Rates: the loops every control_divisor base ticks (stateless, no dt); the drives every drive_divisor.
+// Docs: docs/models/power-stabilizer.md
 #pragma once
 
 #include <cstdint>

@@ -13,6 +13,7 @@
 // drive is enabled; status bits kRateLoopSaturated, kGimbalLockGuard + the runtime's.
 // Rates: the rate loop every control_divisor base ticks with dt = T_c (its PI integrates over T_c); the
 // drive every drive_divisor ticks.
+// Docs: docs/models/servo-gyro.md#firmware-law
 #pragma once
 
 #include <cmath>

@@ -14,6 +14,7 @@
 // kAxis2TorqueSaturated, kBeyondSoftLimit, kEndStopBraking (law_status_bits.hpp) + the runtime's.
 // Rates: the law runs every control_divisor base ticks with dt = T_c (the laws here are static in time
 // except the braking direction); the drive on axis 2 every drive_divisor ticks.
+// Docs: docs/models/ship-roll-damper.md#firmware-laws
 #pragma once
 
 #include <cstdint>

@@ -1,10 +1,10 @@
 // Active precession control of the ship roll damper: roll-rate feedback into the precession torque, a soft
 // limit of the precession angle, braking before the hard end stops, torque saturation.
 //
-// Book: Magnus §14.2 (digest gyro-devices.md §3.2), with the plant's large-angle coupling H cosβ (14.41):
+// Book: Magnus §14.2 (docs/models/ship-roll-damper.md), with the plant's large-angle coupling H cosβ (14.41):
 //   A φ'' + d1 φ' + c φ + H cosβ β' = E(t),        B β'' + d2 β' + q β − H cosβ φ' = M2          (14.8)
-// Practice (peers.md §7.1, Seakeeper-type units): the stabilizing torque is the gyroscopic H β' cosβ; the
-// precession actuator shapes β' (more precession per roll rate than the passive brake allows), keeps β in
+// Practice (modern Seakeeper-type ship gyrostabilizers): the stabilizing torque is the gyroscopic H β' cosβ;
+// the precession actuator shapes β' (more precession per roll rate than the passive brake allows), keeps β in
 // its working range, and brakes the case before the end stops so that it does not slam into them.
 //
 // Sign (derived from (14.8), H > 0 by convention): the gyroscopic torque on the hull is −H cosβ β'. It
@@ -61,10 +61,11 @@
 // dissipative when the case moves inward). Not covered: torque saturation (the argument holds while |M| <
 // M_max; the stops bound β regardless), the large-angle pendulous cross-term q sinφ (1 − cosβ) (third order),
 // and sampling, which the check bounds (d_c T/B ≤ 0.5, sqrt((k_c + k_s)/B) T ≤ 0.5, sampled_loop_limits.hpp).
-// Defaults: the digest's constructed ship (§3.2) with k_r = H and d_c ≈ 8.36e4 N m s/rad, the minimax d2 of
-// (14.11) for H_eff² = H (H + k_r) = 2 H² (peak roll 1.036 × static, passive minimax 1.063 ×; computed from
-// (14.11) off-line), limits ±60° soft / ±70° hard (the plant's default stops).
+// Defaults: the constructed reference ship (docs/models/ship-roll-damper.md) with k_r = H and d_c ≈ 8.36e4 N
+// m s/rad, the minimax d2 of (14.11) for H_eff² = H (H + k_r) = 2 H² (peak roll 1.036 × static, passive
+// minimax 1.063 ×; computed from (14.11) off-line), limits ±60° soft / ±70° hard (the plant's default stops).
 // State: the braking direction (one int). O(1), no heap. Tests: tests/unit/control_laws_test.cpp.
+// Docs: docs/models/ship-roll-damper.md#firmware-laws
 #pragma once
 
 #include <cmath>

@@ -2,6 +2,7 @@
 // refused with a static reason and the numbers that make the reason actionable (the offending value and
 // the computed bounds it must lie within). No text formatting on the target: the host prints the numbers.
 // Used by every law in firmware/control/ and every controller in firmware/app/.
+// Docs: docs/models/README.md#firmware
 #pragma once
 
 namespace gyrostab::firmware {

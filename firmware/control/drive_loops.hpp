@@ -1,4 +1,4 @@
-// Gimbal drive loops (issue 3, firmware "drive loops"): the cascade of a gimbal torque-motor drive —
+// Gimbal drive loops (docs/models/drives.md): the cascade of a gimbal torque-motor drive —
 // velocity PI (outer, e.g. 1 kHz) → current reference → current PI (inner, fast task, e.g. 10 kHz) → voltage.
 //
 // One PI law for both, discrete, with output limits and anti-windup by CONDITIONAL INTEGRATION (clamping):
@@ -45,6 +45,7 @@
 // 3 multiplications and no division at run time (compile_pi precomputes).
 // Test: tests/unit/drive_loops_test.cpp (bandwidth, anti-windup timing vs none, limits, scheduler cascade),
 // tests/alloc/drive_alloc_test.cpp.
+// Docs: docs/models/drives.md#firmware-drive-loops
 #pragma once
 
 #include <cmath>

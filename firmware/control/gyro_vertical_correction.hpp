@@ -1,6 +1,6 @@
 // Correction laws of the gyro vertical: the torques the torquers on the two gimbal axes apply from the
 // erection sensor (rotor-axis tilt from the apparent vertical) and the gimbal rates — the five rows of
-// Magnus's table (12.35) (§12.3, digest gyro-devices.md §1.3), each as a pure function, and their sum.
+// Magnus's table (12.35) (§12.3, docs/models/gyro-vertical.md), each as a pure function, and their sum.
 //
 // Book, precession equations H β' = M1, −H α' = M2 (12.35), e = (e1, e2) = (α − α_L, β − β_L):
 //                               M1                 M2
@@ -12,7 +12,7 @@
 // Rows 4-5 are the non-conservative "correction" proper; rows 1-3 as firmware synthesize what a pendulous
 // rotor case or bearing friction would do (the plant has those physically too: sim/models/gyro_vertical.hpp).
 // Linear correction alone: H β' = −f1 β, −H α' = f2 α ⇒ α = α0 e^(−f2 t/H), β = β0 e^(−f1 t/H).
-// [OCR-fix / book slip, digest §11] the book prints α ∝ e^(−f1 t/H), β ∝ e^(−f2 t/H); the pairing above is
+// [book slip, corrected] the book prints α ∝ e^(−f1 t/H), β ∝ e^(−f2 t/H); the pairing above is
 // the one the printed equations give (identical for f1 = f2, the book's plotted case Fig. 12.11).
 // In a level turn the correction follows the apparent vertical and the instrument settles on the turn
 // error z_G (12.47) (resonant at ω = −ω^P = −c/H); the book's remedy — switch the correction off during
@@ -26,6 +26,7 @@
 // d1 d2/H², kept ≤ 0.5 (it is an algebraic loop in the precession theory: Δ = H² + d1 d2).
 // Tests: tests/unit/gyro_instrument_laws_test.cpp (each row's sign and value, cut-out, dead band, limits,
 // checks); tests/oracle/gyro_vertical_test.cpp (closed loop against (12.41)-(12.49)).
+// Docs: docs/models/gyro-vertical.md#firmware-law
 #pragma once
 
 #include <cmath>

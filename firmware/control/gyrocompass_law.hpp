@@ -2,7 +2,7 @@
 // both from the level sensor on the rotor case (elevation of the rotor axis above the apparent horizon,
 // β_lvl = β + b^N/g), plus the tuning formulas the scene and the law use.
 //
-// Book: Magnus §13.2-13.3 (digest gyro-devices.md §2.2-§2.3):
+// Book: Magnus §13.2-13.3 (docs/models/gyrocompass.md):
 //   (13.8)   M1 = −f β   (damping / correction torque about the vertical),   M2 = −c β (pendulous torque)
 //   (13.9)   δ = f/H,  ω^c = c/H
 //   (13.12)  λ = −δ/2 ± i ω^K,  ω^K² = ω^E cosφ (ω^E cosφ + ω^c) − δ²/4
@@ -14,6 +14,7 @@
 // Signals: reads β_lvl [rad]; writes M1, M2 [N m] clipped to ±torque_limit_Nm. Pure, O(1), no heap.
 // Sampled check (period T): f T/H ≤ 0.5 and c_e T/H ≤ 0.5 (precession per radian of tilt per control tick).
 // Tests: tests/unit/gyro_instrument_laws_test.cpp; closed loop tests/oracle/gyrocompass_test.cpp.
+// Docs: docs/models/gyrocompass.md#firmware-law
 #pragma once
 
 #include <cmath>

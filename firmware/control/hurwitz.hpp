@@ -8,6 +8,7 @@
 // the positive factors the book keeps.
 // O(1), no heap, no exceptions; a NaN coefficient makes every test false (comparisons with NaN are false).
 // Used by firmware/control/power_stabilizer_loops.hpp; tested through tests/oracle/power_stabilizer_test.cpp.
+// Docs: docs/models/power-stabilizer.md#equations
 #pragma once
 
 namespace gyrostab::firmware {

@@ -3,6 +3,7 @@
 // bits 16-20 are PowerStabilizerStatusBit (firmware/control/power_stabilizer_loops.hpp), bits 21-30 these.
 // A decoder needs this file and power_stabilizer_loops.hpp to say why a law limited its command.
 // Append only; never renumber.
+// Docs: docs/models/README.md#firmware
 #pragma once
 
 #include <cstdint>

@@ -1,24 +1,25 @@
-// Monorail motor law with damper (Magnus §14.1, digest gyro-devices.md §3.1): the motor on the gyro-case
+// Monorail motor law with damper (Magnus §14.1, docs/models/monorail.md): the motor on the gyro-case
 // axis 2 is commanded from the car's tilt, and the damper is realised by the same motor:
 //   M2 = k φ − d β'                                          (the right-hand side of (14.2))  [N m]
 // so that the car + case obey (14.2)   A φ'' − c φ + H β' = 0,   B β'' + d β' − q β − H φ' − k φ = 0.
 // Start-up check: the gains must lie in the window where (14.3)
 //   AB λ⁴ + A d λ³ + (H² − qA − cB) λ² + (kH − cd) λ + cq = 0
 // is Hurwitz ((14.5): kH − cd > 0, D^II > 0, D^III > 0). For c, q > 0 and H > sqrt(qA) + sqrt(cB) (the gyro
-// is strong enough, (14.4)) this is the gain window [derived, digest §3.1]
+// is strong enough, (14.4)) this is the gain window [derived, docs/models/monorail.md]
 //   d (c + A ω_P²) / H  <  k  <  d (c + A ω_N²) / H,
 //   ω_P² < ω_N² the roots of  AB Ω⁴ − (H² − qA − cB) Ω² + cq = 0.
 // The law refuses k outside it and reports both bounds; the Hurwitz determinants of (14.5) are evaluated
 // too (firmware/control/hurwitz.hpp) and must agree. d in the check is the total damping on axis 2: the
 // commanded d plus d_mechanical, a passive damper the plant may have (then set the commanded d lower).
-// Digest's constructed car (defaults): A 3000, c 2e4, B 50, q 500, H 4000, d 200 → ω_P = 0.864,
+// The constructed reference car (defaults): A 3000, c 2e4, B 50, q 500, H 4000, d 200 → ω_P = 0.864,
 // ω_N = 9.447 rad/s, window 1112 < k < 14388 N m/rad; k = 7750 (default) gives max Re λ = −0.486 1/s.
 // Signals: reads SensorFrame carrier_angle_rad[kRoll] = φ (car tilt) [rad], gimbal_rate_rad_s[kAxis2] = β'
 // [rad/s]. Writes ActuatorFrame gimbal_torque_Nm[kAxis2] = M2 [N m], clipped to ±torque_limit_Nm. The plant's
 // own analog motor law (sim/models/monorail.hpp, MonorailParams::k) must be 0 when this law drives M2.
 // Sampled: d T / B ≤ 0.5 (sampled_loop_limits.hpp); defaults at 1 ms: 0.004.
 // State: none. O(1), no heap. Tests: tests/unit/control_laws_test.cpp (sign, saturation, window refusal on
-// both sides against the digest's numbers).
+// both sides against the reference car's numbers).
+// Docs: docs/models/monorail.md#firmware-law
 #pragma once
 
 #include <cmath>

@@ -2,7 +2,7 @@
 // damps the nutation, or the single-axis back-EMF voltage law (14.27); with the start-up gain check against
 // the Hurwitz conditions (14.25) / (14.30) that refuses gains making the loop unstable and says by how much.
 //
-// Book: Magnus §14.3 (digest gyro-devices.md §3.3, gyro-fundamentals.md App. A.3), (14.19)-(14.30).
+// Book: Magnus §14.3, (14.19)-(14.30) (docs/models/power-stabilizer.md).
 //
 // Torque mode (PowerStabilizerOutput::kTorque; current-controlled torque motors on both gimbal axes):
 //   M1^K = −k1 β − d1 α',     M2^K = +k2 α − d2 β'                          (14.19) + rate damping
@@ -11,12 +11,13 @@
 //   AB λ⁴ + (A d2 + B d1) λ³ + (H² + d1 d2) λ² + H (k1 + k2) λ + k1 k2 = 0.
 // In the check, d1, d2 are the total viscous damping: the commanded rate feedback plus the passive bearing
 // damping the configuration declares (bearing_d1, bearing_d2). Without damping the nutation is self-excited
-// (Re λ ≈ (k1 + k2)/(2H) − (A d2 + B d1)/(2AB), digest A.3) although the precession theory (14.24) predicts
-// λ = −k/H; and the gains are bounded above by the damping, (14.25):
+// (Re λ ≈ (k1 + k2)/(2H) − (A d2 + B d1)/(2AB) for small d and k, derived from (14.23)) although the
+// precession theory (14.24) predicts λ = −k/H; and the gains are bounded above by the damping, (14.25):
 //   D2 = (H² + d1 d2)(A d2 + B d1) − AB H (k1 + k2) > 0,    D3 = H (k1 + k2) D2 − (A d2 + B d1)² k1 k2 > 0.
 // Along the configured gain ratio, k → σ k, both hold iff σ < σ_max (the gain margin reported):
 //   σ_max = H K P S / (AB H² K² + S² k1 k2),   K = k1 + k2,  P = H² + d1 d2,  S = A d2 + B d1;
-// for k1 = k2 = k:  k < k_max = 2 H P S / (4 AB H² + S²)   (S2 of gyro-fundamentals §10.2: 28.12 N m/rad).
+// for k1 = k2 = k:  k < k_max = 2 H P S / (4 AB H² + S²)   (reference case S2 of
+// docs/models/power-stabilizer.md: 28.12 N m/rad).
 // Steady state under constant disturbances (14.21): α0 = −M20^S/k2, β0 = M10^S/k1 — the stiffness is k, and
 // the torque limit must exceed the largest disturbance to be balanced (else the gyro precesses away).
 //
@@ -48,6 +49,7 @@
 // itself, so with d_c = 0 nothing changes here; a non-zero d_c acts on gimbal_rate_rad_s[kAxis1].
 // Resources: stateless (the configuration and the check are fixed at construction); compute() is O(1), no
 // heap, no exceptions, no I/O. Oracle: tests/oracle/power_stabilizer_test.cpp.
+// Docs: docs/models/power-stabilizer.md
 #pragma once
 
 #include <cmath>
@@ -90,7 +92,7 @@ struct PowerStabilizerConfig {
 
   PowerStabilizerOutput output{PowerStabilizerOutput::kTorque};
 
-  // Torque mode: (14.19) + rate damping. Defaults: reference case S2 of gyro-fundamentals §10.2.
+  // Torque mode: (14.19) + rate damping. Defaults: reference case S2 (docs/models/power-stabilizer.md).
   double k1{20.0};                                         // M1^K per rad of β [N m/rad]
   double k2{20.0};                                         // M2^K per rad of α [N m/rad]
   double d1{0.5};                                          // commanded rate damping, axis 1 [N m s/rad]

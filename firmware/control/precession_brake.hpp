@@ -1,7 +1,7 @@
 // Passive precession brake of the ship roll damper: the viscous brake d2 of Magnus §14.2 realised by the
 // precession drive, commanded as a torque on the case axis 2.
 //
-// Book (digest gyro-devices.md §3.2): (14.8)  A φ'' + d1 φ' + c φ + H β' = E(t),
+// Book (Magnus §14.2):                 (14.8)  A φ'' + d1 φ' + c φ + H β' = E(t),
 //                                             B β'' + d2 β' + q β − H φ' = M2.
 // The term d2 β' of (14.8) moved to the right-hand side is the torque the brake applies to the case:
 //   M2 = −d2 β'                                  → ActuatorFrame::gimbal_torque_Nm[kAxis2]  [N m]
@@ -11,12 +11,13 @@
 // the contract does not define; a torque −d2 β' is exactly the (14.8) term whatever the actuator is. So the
 // plant's own d2 must be 0 when this law is in the loop (else the damping is counted twice).
 // d2 is a parameter: Hahnkamm's minimax value (the d2 whose maximum of φ_A(ω) passes through the higher
-// invariant point ω_II or ω_III of (14.17)-(14.18)) is computed off-line; for the digest's constructed ship
+// invariant point ω_II or ω_III of (14.17)-(14.18)) is computed off-line; for the constructed reference ship
 // (A 3.2e7, c 1.1772e7, B 1.5e4, q 1350, H 1.018e6) it is ≈ 4.53e4 N m s/rad (the default), peak roll
 // 1.06 × static.
 // Signals: reads SensorFrame gimbal_rate_rad_s[kAxis2] = β' [rad/s]. Writes gimbal_torque_Nm[kAxis2] [N m].
 // Sampled: D = d2 must satisfy d2 T / B ≤ 0.5 (sampled_loop_limits.hpp); for the defaults at 1 ms 0.003.
 // State: none. O(1), no heap. Tests: tests/unit/control_laws_test.cpp (sign, saturation, check).
+// Docs: docs/models/ship-roll-damper.md#firmware-laws
 #pragma once
 
 #include <cmath>

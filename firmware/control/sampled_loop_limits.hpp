@@ -1,6 +1,6 @@
 // Upper limits a sampled loop puts on rate (damping) and angle (stiffness) feedback on a gimbal axis of
 // inertia B, run every T seconds with a zero-order hold and up to two ticks of latency (the command of
-// tick k is applied from tick k + 1, DESIGN §2, plus one tick of margin).
+// tick k is applied from tick k + 1, docs/architecture.md (the loop), plus one tick of margin).
 //
 // Rate feedback M = −D β' alone: B Δβ'/T = −D β'(delayed) gives β'_{k+1} = β'_k − a β'_{k−n} with
 // a = D T / B. One tick of latency (n = 1): z² − z + a, stable iff a < 1; two ticks: z³ − z² + a, stable
@@ -10,6 +10,7 @@
 // These are necessary conditions for the sampled law to behave like the continuous one the book analyses
 // (the gyroscopic coupling and the plant's own damping only move the limits a little for ω_N T ≪ 1); they
 // guard against a gain typed with the wrong unit or a period chosen far too long. O(1).
+// Docs: docs/models/README.md#firmware
 #pragma once
 
 namespace gyrostab::firmware {

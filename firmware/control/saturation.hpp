@@ -1,6 +1,7 @@
 // Symmetric saturation of a command, with a flag saying whether it bit: the one place the control laws
 // clip torques, so every law reports its saturation the same way (LawStatusBit, law_status_bits.hpp).
 // Units: whatever the command's unit is (N m, V, rad/s). O(1), no state.
+// Docs: docs/models/README.md#firmware
 #pragma once
 
 namespace gyrostab::firmware {

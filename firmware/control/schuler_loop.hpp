@@ -2,10 +2,10 @@
 // commanded platform rate (the level frame's rate v/R) and torques the gyro that holds that platform axis,
 // so that the platform follows the local level with the undisturbed period 2π sqrt(R/g) = 84.4 min.
 //
-// Book: Magnus §16.4.2 (digest gyro-devices.md §5.4), Fig. 16.9:
+// Book: Magnus §16.4.2 (docs/models/inertial-platform.md), Fig. 16.9:
 //   (16.36)  α' = α'_soll = (1/R) ∫ b^M dt            (16.39)  M2^K = −(H/R) ∫ b^M dt
 //   (16.37)  (α − ϑ)'' + (g/R)(α − ϑ) = 0           (16.38)  T = 2π sqrt(R/g) = 84.4 min
-//   (16.44)  λ1,2 = ±i sqrt(g/R) — [OCR-fix, digest §11] printed ±i sqrt(R/g); (16.43) gives sqrt(g/R).
+//   (16.44)  λ1,2 = ±i sqrt(g/R) — [OCR-fix] printed ±i sqrt(R/g); (16.43) gives sqrt(g/R).
 // The loop reads each channel's apparent tilt θ_i = the platform's tilt about its axis i from the apparent
 // level as its accelerometer senses it (θ = −b^M/g0 for the book's single axis; SensorFrame carrier_angle,
 // scale g0 = 9.80665 m/s²; see sim/models/inertial_platform.hpp), averaged over the control period by an
@@ -25,6 +25,7 @@
 // check refuses ω_S T > 1e-2 (a period typed in the wrong unit).
 // Signals: reads θ_1, θ_2 [rad]; writes M_1, M_2 [N m] (clipped at ±torque_limit_Nm). O(1), no heap.
 // Tests: tests/unit/gyro_instrument_laws_test.cpp; closed loop tests/oracle/inertial_platform_test.cpp.
+// Docs: docs/models/inertial-platform.md#firmware-law
 #pragma once
 
 #include <cmath>

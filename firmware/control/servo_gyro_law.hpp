@@ -1,4 +1,4 @@
-// Servo gyro / control moment gyro drive (Magnus §14.4, digest gyro-devices.md §3.4): the motor on the inner
+// Servo gyro / control moment gyro drive (Magnus §14.4, docs/models/servo-gyro.md): the motor on the inner
 // axis 2 holds the gimbal rate β' at a reference Ω, and the gyroscopic reaction puts a torque on axis 1.
 //
 // Book: (14.41)  A α'' + H cosβ β' = M1,     B β'' − H cosβ α' = M2
@@ -23,6 +23,7 @@
 // Sampled: k_p T / B ≤ 0.5 (sampled_loop_limits.hpp); defaults at 1 ms: 0.2.
 // State: the PI's integral I [N m] (PiState). O(1), no heap. Tests: tests/unit/control_laws_test.cpp (sign,
 // rate tracking on B β'' = M2 + H cosβ α', saturation and anti-windup, the torque-to-rate map).
+// Docs: docs/models/servo-gyro.md#firmware-law
 #pragma once
 
 #include <cmath>

@@ -13,6 +13,7 @@
 // gimbal; k_e and k_t are referred to the gimbal shaft, i.e. include the gear ratio). Writes ActuatorFrame
 // motor_voltage_V[axis] [V]. The torque field is left as the law wrote it (a torque-mode plant reads that).
 // State: one PI integral [V]. O(1), no heap. Tests: through tests/unit/controllers_test.cpp.
+// Docs: docs/models/drives.md#firmware-drive-loops
 #pragma once
 
 #include <cmath>

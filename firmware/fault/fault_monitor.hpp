@@ -1,7 +1,7 @@
-// Fault monitor: the controller's watchdog on sensor frames (DESIGN §8-9). Every tick it checks the frame
-// that arrived (or that none did), counts each cause, bridges a short run of bad ticks by holding the last
-// good frame, and then latches the safe state (firmware/fault/safe_state.hpp) with the reason in the status
-// bits of every ActuatorFrame.
+// Fault monitor: the controller's watchdog on sensor frames (docs/architecture.md, bad input and safe
+// states). Every tick it checks the frame that arrived (or that none did), counts each cause, bridges a short
+// run of bad ticks by holding the last good frame, and then latches the safe state
+// (firmware/fault/safe_state.hpp) with the reason in the status bits of every ActuatorFrame.
 //
 // Causes (FaultBit, msg/fault_bits.hpp), checked in this order each tick:
 //   kSensorMissing        no frame this tick (check(nullptr, tick));

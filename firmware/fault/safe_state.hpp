@@ -1,8 +1,8 @@
-// The safe command (DESIGN §9): precession brake full on, every gimbal drive at zero torque and zero voltage,
-// and FaultBit::kSafeState in the status so a drive disables its bridge whatever the numbers say.
-// Why the brake and not a free case: a locked case turns the stabilizer into a rigid mass on the carrier
-// (Magnus (14.15): the ship rolls as if unstabilized), which is safe; a free case with a spinning rotor
-// can run into its end stops.
+// The safe command (docs/architecture.md, faults and safe states): precession brake full on, every gimbal
+// drive at zero torque and zero voltage, and FaultBit::kSafeState in the status so a drive disables its
+// bridge whatever the numbers say. Why the brake and not a free case: a locked case turns the stabilizer into
+// a rigid mass on the carrier (Magnus (14.15): the ship rolls as if unstabilized), which is safe; a free case
+// with a spinning rotor can run into its end stops.
 #pragma once
 
 #include <cstddef>

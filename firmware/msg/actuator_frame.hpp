@@ -1,7 +1,8 @@
 // ActuatorFrame: what the controller hands the plant (or the real drives) once per controller tick — the
-// command half of the interface contract (ICD). LCM and CAN carry exactly these fields (DESIGN §8).
+// command half of the interface contract (ICD). LCM and CAN carry exactly these fields (docs/architecture.md,
+// messages and transports).
 //
-// Book symbols (Magnus ch. 14, ../reference/gyro-devices.md §3): gimbal_torque_Nm[kAxis2] is the precession
+// Book symbols (Magnus ch. 14; docs/models/README.md): gimbal_torque_Nm[kAxis2] is the precession
 // torque of the active ship damper and the motor torque k φ of the monorail (14.2); [kAxis1], [kAxis2] are
 // M1^K, M2^K of the power stabilizer (14.19); motor_voltage_V is u of the back-EMF law (14.26)-(14.27), used
 // by drives modelled with their electrics. A plant drive reads the one its scene names.

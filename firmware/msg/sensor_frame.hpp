@@ -1,8 +1,9 @@
 // SensorFrame: what the plant (or the real sensors) hands the controller once per controller tick — the
-// sensor half of the interface contract (ICD). LCM and CAN carry exactly these fields (DESIGN §8).
+// sensor half of the interface contract (ICD). LCM and CAN carry exactly these fields (docs/architecture.md,
+// messages and transports).
 //
 // One frame serves every shipped device; a device fills the signals it has and leaves the rest zero.
-// Book symbols (Magnus ch. 14, ../reference/gyro-devices.md §3) map onto the fields as follows:
+// Book symbols (Magnus ch. 14; docs/models/README.md) map onto the fields as follows:
 //
 //   device                      carrier_angle / carrier_rate      gimbal_angle / gimbal_rate    drives
 //   ship roll damper (14.8)     [kRoll] = φ ship roll, φ'         [kAxis2] = β precession, β'  —
@@ -15,8 +16,8 @@
 // single-gimbal device uses index kAxis2, not 0.
 //
 // Why doubles: the plant and the host controller compute in double, and in-process, lockstep-LCM and
-// lockstep-CAN runs must be bit-identical (DESIGN §2). On a Cortex-M4F double arithmetic is software; a CAN
-// frame map scales these to integers anyway (hil/can/frame_map.hpp).
+// lockstep-CAN runs must be bit-identical (docs/architecture.md, the loop). On a Cortex-M4F double arithmetic
+// is software; a CAN frame map scales these to integers anyway (hil/can/frame_map.hpp).
 //
 // Layout rules (checked below and in tests/unit/contract_test.cpp): trivially copyable, standard layout,
 // every member naturally aligned with no padding, fixed size. Append fields only at the end.

@@ -1,7 +1,7 @@
-// Fixed-step multi-rate scheduler on integer ticks (DESIGN §2): task i runs at every tick k with
-// k mod period_i == phase_i (0 ≤ phase_i < period_i), in the order the tasks were added; every task is
-// bracketed by a PerfCounter (runs, compute min/mean/max, overruns vs its budget, start-to-start interval),
-// PX4-style, and so is the whole tick.
+// Fixed-step multi-rate scheduler on integer ticks (docs/architecture.md, the loop): task i runs at every
+// tick k with k mod period_i == phase_i (0 ≤ phase_i < period_i), in the order the tasks were added; every
+// task is bracketed by a PerfCounter (runs, compute min/mean/max, overruns vs its budget, start-to-start
+// interval), PX4-style, and so is the whole tick.
 //
 // Resources: a fixed table of `Capacity` tasks inside the object, no heap, no OS, no locks; the time source
 // is injected (`Clock`, see clock.hpp). Pacing (waiting for the next tick) is the caller's business: the

@@ -5,7 +5,7 @@
 //
 // The bus drivers are not part of the proof: a sensor-bus DMA is taken to write g_sensor_rx and raise
 // g_sensor_rx_ready, a drive-bus DMA to send g_actuator_tx. The command itself is a placeholder (zero
-// torque, brake released) where the control laws of issue 3 go.
+// torque, brake released) where the device control laws (firmware/control/) go.
 #include <cstdint>
 
 #include "firmware/fault/fault_monitor.hpp"

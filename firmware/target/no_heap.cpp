@@ -1,9 +1,10 @@
-// The no-heap rule made a link error (DESIGN §3): the target link wraps malloc, free, calloc, realloc, their
-// newlib-reentrant forms and _sbrk (-Wl,--wrap=..., tools/cross/build-firmware-arm), so every reference to
-// them — from our code, libstdc++ or newlib — lands on the __wrap_ functions below; and every form of
-// operator new is defined here. All of them call gyrostab_firmware_heap_use_is_forbidden(), which is defined
-// nowhere. With -ffunction-sections and --gc-sections an unreachable one is discarded with its reference, so
-// the link succeeds exactly when no allocation is reachable, and otherwise fails with
+// The no-heap rule made a link error (docs/architecture.md, allocation-free rules): the target link wraps
+// malloc, free, calloc, realloc, their newlib-reentrant forms and _sbrk (-Wl,--wrap=...,
+// tools/cross/build-firmware-arm), so every reference to them — from our code, libstdc++ or newlib — lands on
+// the __wrap_ functions below; and every form of operator new is defined here. All of them call
+// gyrostab_firmware_heap_use_is_forbidden(), which is defined nowhere.
+// With -ffunction-sections and --gc-sections an unreachable one is discarded with its reference, so the link
+// succeeds exactly when no allocation is reachable, and otherwise fails with
 //   undefined reference to `gyrostab_firmware_heap_use_is_forbidden'
 // naming the allocating function. The cross build proves the failure with a file that calls new.
 //

@@ -1,5 +1,5 @@
 // The plant side's acceptance test of an ActuatorFrame, independent of the transport (LCM here; the CAN
-// transport of issue 7 reuses it): what a drive checks before it applies a command.
+// FD transport, hil/can/, reuses it): what a drive checks before it applies a command.
 //   values   every torque, voltage and the brake finite; |torque| ≤ torque limit and |voltage| ≤ voltage
 //   limit
 //            per gimbal axis (the scene's limits, ActuatorLimits); brake in [0, 1];

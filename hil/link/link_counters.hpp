@@ -1,4 +1,5 @@
-// What one end of a plant ⇄ controller link counts (DESIGN §8: bad input is counted, reported and handled,
+// What one end of a plant ⇄ controller link counts (docs/architecture.md, messages and transports: bad
+// input is counted, reported and handled,
 // never applied). Transport-independent: the LCM link and the in-memory test link fill the same struct, and
 // the run report prints it (tools/run/link_report.hpp). Plain counters, no heap.
 #pragma once

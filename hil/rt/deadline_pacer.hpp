@@ -1,4 +1,5 @@
-// Real-time pacing on CLOCK_MONOTONIC absolute deadlines (DESIGN §2 "real time"): tick k starts at
+// Real-time pacing on CLOCK_MONOTONIC absolute deadlines (the "real time" mode of the loop,
+// docs/architecture.md): tick k starts at
 // epoch + k · period. wait_until() sleeps with clock_nanosleep(TIMER_ABSTIME) — an absolute deadline, so a
 // late tick does not shift the ones after it (no drift) — until `spin_ns` before the deadline, then spins on
 // clock_gettime for the tail (the sleep's wake-up latency on a loaded kernel is tens of µs to ms; the spin

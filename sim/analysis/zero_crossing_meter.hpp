@@ -1,4 +1,4 @@
-// Frequency of an oscillating signal from its upward zero crossings, over whole periods only — averaging over a partial period biases a measured rate by ~1 % (digest §3.3.a).
+// Frequency of an oscillating signal from its upward zero crossings, over whole periods only — averaging over a partial period biases a measured rate by ~1 % (docs/models/rigid-bodies.md#heavy-symmetric-top).
 // Crossings are located by cubic Hermite interpolation when the derivative is given (a few samples per
 // period suffice: 5 samples of a 200 Hz nutation at 1 kHz), by linear interpolation otherwise.
 // Streaming and allocation-free: feed samples in time order.

@@ -1,6 +1,6 @@
 // Bearing friction of a gimbal axis with stick-slip: Coulomb + viscous, optional Stribeck, and Karnopp's
-// stick model made exact for a fixed-step loop (digest §7.2(b) friction (11.6)-(11.10), §9 "use a stick-slip
-// (Karnopp) model; tanh-smoothed sgn needs a tiny step").
+// stick model made exact for a fixed-step loop (Magnus §11.2.2, Coulomb friction (11.6)-(11.10); a smoothed
+// sgn would need a tiny step, docs/models/drives.md#bearing-friction).
 //
 //   slipping (|v| ≥ v_st):  τ_f = −τ_k(v) sgn v − b v,   τ_k(v) = τ_c + (τ_s − τ_c) e^{−(v/v_S)²}  (v_S = 0: τ_c)
 //   stuck    (|v| < v_st and |τ_a| ≤ τ_s):  τ_f = −τ_a, the joint is held: the caller sets v = 0
@@ -27,6 +27,7 @@
 // (torque from the step-start speed): stable for h < 2J/b (gimbal_drive.hpp adds the back-EMF to b).
 // Test: tests/oracle/gimbal_drive_test.cpp (stuck exactly under a ramp below breakaway, slip above, finite-time
 // stop at J v0/τ_c with no sign change, Coulomb nutation decay (11.6)-(11.9) at a 1 ms step).
+// Docs: docs/models/drives.md#bearing-friction
 #pragma once
 
 #include <cmath>

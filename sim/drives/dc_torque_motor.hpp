@@ -1,6 +1,6 @@
 // DC torque motor, or a brushless (PMSM) motor under field-oriented control in its DQ-equivalent form: the
-// electrics of a gimbal drive (DESIGN §4, issue 3 "Gimbal drive"; the book's back-EMF motor (14.26)-(14.27)
-// u = L i' + R i + k_e ω, M = k_t i, ../reference/gyro-devices.md §3).
+// electrics of a gimbal drive (docs/models/drives.md; the book's back-EMF motor, Magnus §14.3.2
+// (14.26)-(14.27), here with the winding: u = L i' + R i + k_e ω, M = k_t i).
 //
 //   L di/dt = u − R i − k_e ω_m        torque on the rotor τ_m = k_t i
 //   |u| ≤ U_max (bus), |i| ≤ I_max (the drive's own current clamp)
@@ -42,6 +42,7 @@
 // Hot path: advance* are O(1) (≤ 3 exponentials, ≤ 2 logarithms), no heap. Disabled (bridge open): i = 0 at
 // once (the free-wheel transient, ≈ L|i|/U_max, is not modelled).
 // Test: tests/oracle/gimbal_drive_test.cpp (current rise, stall, clamp, held-speed bound).
+// Docs: docs/models/drives.md#dc-torque-motor
 #pragma once
 
 #include <algorithm>

@@ -1,4 +1,5 @@
-// Gear train between a gimbal torque motor and its gimbal axis (DESIGN §4 "gear ratio with reflected inertia").
+// Gear train between a gimbal torque motor and its gimbal axis ("gear ratio with reflected inertia",
+// docs/models/drives.md).
 //
 //   ω_m = N ω_axis,   θ_m = N θ_axis                       (N = motor turns per axis turn; N < 0 reverses)
 //   τ_axis = η N τ_m      when the motor delivers power (τ_m ω_m ≥ 0, including standstill)
@@ -14,6 +15,7 @@
 // included, so the scene builder adds reflected_inertia() to the axis inertia of the device model once, at
 // construction (see gimbal_drive.hpp for the GimbalGyro parameter to add it to).
 // Test: tests/oracle/gimbal_drive_test.cpp (acceleration τ N/(J_load + N² J_m), efficiency by power direction).
+// Docs: docs/models/drives.md#gear-train
 #pragma once
 
 #include <cmath>

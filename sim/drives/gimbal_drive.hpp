@@ -1,4 +1,4 @@
-// Gimbal drive: the actuator of one gimbal axis, composed from its parts (DESIGN §4, issue 3 "Gimbal drive"):
+// Gimbal drive: the actuator of one gimbal axis, composed from its parts (docs/models/drives.md):
 //
 //   command (voltage, or torque for a current-regulated drive), enable
 //     → DcTorqueMotor: bus clip, PWM as ZOH, exact current over the step, current clamp   (dc_torque_motor.hpp)
@@ -48,6 +48,7 @@
 // encoder counts are of the motor-shaft angle N θ_axis, wrapped to int32 as the contract carries them.
 // Hot path: step() O(1), no heap; the probe costs two model derivatives.
 // Test: tests/oracle/gimbal_drive_test.cpp, tests/alloc/drive_alloc_test.cpp.
+// Docs: docs/models/drives.md#gimbal-drive-composition-and-its-coupling-to-a-device
 #pragma once
 
 #include <cmath>

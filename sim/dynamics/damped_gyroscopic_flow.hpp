@@ -13,6 +13,7 @@
 // cancel (|w| small, and the nearly critically damped case δ ≈ 0 with real roots).
 // Allocation-free, no branches on the caller's side. Checked against a matrix exponential in
 // tests/unit/damped_gyroscopic_flow_test.cpp.
+// Docs: docs/models/integrators.md#methods
 #pragma once
 
 #include <cmath>

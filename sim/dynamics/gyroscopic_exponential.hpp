@@ -21,6 +21,7 @@
 // gyroscopic_pair(x) -> GyroscopicPair; optionally derivative_with_pair(t, x, dx) -> GyroscopicPair, both from
 // one evaluation of the model's trigonometry (the same numbers; about a third less work per step for a
 // gimbal gyro, whose sinβ, cosβ and I(β) both need).
+// Docs: docs/models/integrators.md#methods
 #pragma once
 
 #include <concepts>

@@ -27,6 +27,7 @@
 // with G(x) u affine in x (additive torques, viscous brakes), so that the four input terms of a step are one
 // evaluation at the history's weighted mean state.
 // State: the model's. Allocation-free: the history is four states and four derivatives.
+// Docs: docs/models/integrators.md#methods
 #pragma once
 
 namespace gyrostab::dynamics {

@@ -10,6 +10,7 @@
 // Newton: the Jacobian is taken once per step at x_n (analytic if the model has `jacobian`, otherwise
 // forward differences), M = I - (h/2) J is LU-factored once, and the residual is iterated to
 // |Δx| <= 1e-14 (1 + |x|), at most kMaxIterations times. All matrices are fixed-size: no heap.
+// Docs: docs/models/integrators.md#methods
 #pragma once
 
 #include <Eigen/Core>

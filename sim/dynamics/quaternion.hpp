@@ -6,6 +6,7 @@
 //
 // A state vector stores the quaternion as Eigen's coefficient order (x, y, z, w), so
 // Eigen::Map<Eigen::Quaterniond> views it without a copy.
+// Docs: docs/models/integrators.md#methods
 #pragma once
 
 #include <Eigen/Geometry>
@@ -27,7 +28,8 @@ inline void quaternion_rate(const Eigen::Ref<const Eigen::Vector4d>& q_xyzw, con
 }
 
 // First-order projection back to |q| = 1: q (3 - |q|^2) / 2. Costs a multiply instead of a sqrt and a
-// divide, and for the drift of one step (|q|^2 - 1 ~ 1e-10) it is as exact as q/|q| (numerics.md §2.4).
+// divide, and for the drift of one step (|q|^2 - 1 ~ 1e-10) it is as exact as q/|q| (the integrator survey,
+// docs/models/integrators.md).
 inline void renormalize_cheap(Eigen::Ref<Eigen::Vector4d> q_xyzw) { q_xyzw *= 0.5 * (3.0 - q_xyzw.squaredNorm()); }
 
 // Body-fixed rotation by `angle` about the unit body axis n_B: q_WB <- q_WB ⊗ exp(angle n_B / 2).

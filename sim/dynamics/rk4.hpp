@@ -7,7 +7,8 @@
 //
 // Amplification factor on y' = λy: R(z) = 1 + z + z²/2 + z³/6 + z⁴/24, z = hλ. On an undamped mode
 // (z = iωh) |R| < 1: RK4 damps oscillations numerically, by 1.8e-10 per second for a 200 Hz nutation at
-// 1 kHz (numerics.md §3.5). step_validation.hpp refuses such steps.
+// 1 kHz (docs/models/integrators.md). step_validation.hpp refuses such steps.
+// Docs: docs/models/integrators.md#methods
 #pragma once
 
 #include <Eigen/Core>

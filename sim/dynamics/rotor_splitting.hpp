@@ -18,6 +18,7 @@
 //
 // A Model provides inertia() (principal I1, I2, I3, axis 3 the figure axis), body_torque(t, q) depending
 // on attitude only, kHasTorque, and the rigid-body state layout of sim/models/rigid_body_state.hpp.
+// Docs: docs/models/integrators.md#methods
 #pragma once
 
 #include <cmath>

@@ -8,13 +8,14 @@
 //   implicit-midpoint   R = (1 + z/2)/(1 - z/2)               (|R| = 1 on undamped modes)
 //   strang, yoshida4, gyro-exponential
 //                       R = e^z on oscillatory modes (solved exactly), but the kicks resonate at
-//                       h·|Im λ| = 2πk: refused beyond h·|Im λ| ≤ 0.8·2π (numerics.md §3.3);
+//                       h·|Im λ| = 2πk: refused beyond h·|Im λ| ≤ 0.8·2π (docs/models/integrators.md);
 //                       R = 1 + z + z²/2 on non-oscillatory modes (the kicks are second order).
 // Bounds (StepBounds):
 //   stable:      |R| ≤ 1 on every mode with Re λ ≤ 0;
 //   amplitude:   on lightly damped modes (|Re λ| ≤ 0.1 |Im λ|) the numerical amplitude factor
 //                (|R| / |e^z|)^(keep_time/h) stays within amplitude_tolerance of 1
 //                (default: within 1e-3 over 10 s, the foundation's nutation-damping test).
+// Docs: docs/models/integrators.md#step-validation-step_validationhpp
 #pragma once
 
 #include <Eigen/Eigenvalues>

@@ -1,5 +1,6 @@
 // Integer time: the loop counts controller ticks; the plant takes an integer number of equal sub-steps per
 // tick. Time is computed from the integer tick and the integer period in nanoseconds, never accumulated.
+// Docs: docs/models/integrators.md
 #pragma once
 
 #include <cstdint>

@@ -4,6 +4,7 @@
 // rate dΩ_B/dt [rad/s, rad/s²], and the specific force f_B divided by g (dimensionless; (0,0,1) for a base
 // at rest with its axis 3 up). Gravity and base acceleration act on the gyro only through f_B.
 // Conventions follow Magnus §10.2 (10.21)-(10.22): Ω = (Ω1, Ω2, Ω3) in the base (outer-gimbal) frame.
+// Docs: docs/models/suspension-motion.md#base-at-rest-and-prescribed-rotation
 #pragma once
 
 #include <cmath>

@@ -6,6 +6,7 @@
 // (kg m²), which must satisfy the triangle inequalities (1.10).
 // Invariants: T = ½ w·Iw and the world-frame angular momentum L_W = R_WB I w.
 // Oracles: tests/oracle/free_rigid_body_test.cpp (Jacobi solution, energy/|L| drift, middle-axis flips).
+// Docs: docs/models/rigid-bodies.md#free-rigid-body
 #pragma once
 
 #include "sim/models/rigid_body_state.hpp"

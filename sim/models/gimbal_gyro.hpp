@@ -20,7 +20,9 @@
 // Coulomb friction is regularised: r·v/sqrt(v² + v_c²) with v_c = `coulomb_velocity` (a true stick-slip
 // model arrives with the gimbal drive).
 // Oracles: tests/oracle/gimbal_gyro_test.cpp — quartic (10.14), kinetic drift (4.67), viscous nutation
-// decay (A d2 + B d1)/(2AB), Coulomb linear decay (§11.2b), torque-step transient (§8 of the digest).
+// decay (A d2 + B d1)/(2AB), Coulomb linear decay (§11.2.2), torque-step transient
+// (docs/models/gimbal-gyro.md#precession-model-p0).
+// Docs: docs/models/gimbal-gyro.md#full-model
 #pragma once
 
 #include <cmath>

@@ -9,10 +9,12 @@
 // because viscous friction involves the rates.
 // State x = [α (rad), β (rad), H (N m s)]. No nutation, so no fast mode: the step is bounded by the
 // precession ω^P ≈ |c|/H only.
-// Validity (§10.1, digest §8): symmetric rotor, constant spin, small nutation, large H; relative error of
-// order ε = ω^P/ω^N. Singular at gimbal lock (cosβ = 0) without damping. Coulomb friction is not modelled
-// here (the precession-with-Coulomb case (11.16) would need a set-valued solve).
+// Validity (§10.1, docs/models/gimbal-gyro.md#precession-model-p0): symmetric rotor, constant spin, small
+// nutation, large H; relative error of order ε = ω^P/ω^N. Singular at gimbal lock (cosβ = 0) without damping.
+// Coulomb friction is not modelled here (the precession-with-Coulomb case (11.16) would need a set-valued
+// solve).
 // Oracle: tests/oracle/gimbal_gyro_test.cpp compares it with the full model and reports ε beside the error.
+// Docs: docs/models/gimbal-gyro.md#precession-model-p0
 #pragma once
 
 #include <cmath>

@@ -1,7 +1,8 @@
 // A gyro whose rotor axis is held near axis 3 of a reference frame that rotates in inertial space — the
-// master equation of Magnus ch. 12, 13, 15 (§10.2; digest gyro-devices.md §0.2), shared by the gyro vertical
-// (sim/models/gyro_vertical.hpp), the gyrocompass (sim/models/gyrocompass.hpp) and the single-degree-of-freedom
-// gyros (sim/sensors/rate_integrating_gyro.hpp). The devices differ only in the frame and in the torques.
+// master equation of Magnus ch. 12, 13, 15 (§10.2; docs/models/gyro-vertical.md#the-master-equation-102),
+// shared by the gyro vertical (sim/models/gyro_vertical.hpp), the gyrocompass (sim/models/gyrocompass.hpp)
+// and the single-degree-of-freedom gyros (sim/sensors/rate_integrating_gyro.hpp). The devices differ only
+// in the frame and in the torques.
 //
 //   (10.21)  H_i = [A(α' + Ω1) + Hβ,  B(β' + Ω2) − Hα,  H]
 //   (10.22)  A α'' + H β' + H Ω3 α = M1 − A Ω1' − H Ω2
@@ -22,6 +23,7 @@
 // per step (the motion generators cost more than the model).
 // Oracles: through the devices (tests/oracle/gyro_vertical_test.cpp, gyrocompass_test.cpp,
 // rate_integrating_gyro_test.cpp).
+// Docs: docs/models/gyro-vertical.md#the-master-equation-102
 #pragma once
 
 #include <cmath>

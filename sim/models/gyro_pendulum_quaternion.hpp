@@ -1,10 +1,11 @@
 // Gyro-pendulum systems with a moving suspension point in Rodrigues–Hamilton parameters — Chelnokov,
 // "Quaternion methods in problems of relative motion of dynamically symmetric material systems. II"
-// (digest gyro-devices.md §6), the second-order quaternion equations
+// (docs/models/gyro-pendulum.md#chelnokovs-quaternion-form), the second-order quaternion equations
 //   (1.3)-(1.5)  κ: the gyro frame Y relative to the reference trihedron Z        (ChelnokovKappa)
 //   (3.1)-(3.2)  λ: the frame Y' (turning with Ω = ω − c r y3) relative to Z    (ChelnokovLambda, M = 0)
 //   (4.1)-(4.4)  z: Y' relative to the non-rotating frame X (inertial axes)      (ChelnokovZ, M = 0)
-// The equations are the digest's reconstruction; [OCR-fix] places used here (digest §11): (1.4) reads
+// The equations are reconstructed from the scanned paper and checked numerically; [OCR-fix] places used
+// here (listed in docs/models/gyro-pendulum.md): (1.4) reads
 // ¼(ω°² − ω²) (printed ¼(ω° − ω²)); (4.1) is z'' + ¼Ω²z (printed ż); κ = ν̄∘z∘μ̄ (printed z = …); u' = −c r y3;
 // M3 = I3 r0'; U' = (3/2)(I1 − I3)(g/R)γ3²; all time-derivative dots restored.
 //
@@ -31,6 +32,7 @@
 // Oracles: tests/oracle/chelnokov_test.cpp — (1.3)/(1.4)/(4.1) residuals on a 3-D rigid-body run,
 // κ/λ/z forms giving the same motion, unperturbability (2.5), energy integral (2.11), stability (2.14),
 // Kepler oscillator (§4); cross-check with Magnus (12.58) in tests/oracle/gyro_pendulum_cross_test.cpp.
+// Docs: docs/models/gyro-pendulum.md#chelnokovs-quaternion-form
 #pragma once
 
 #include <cmath>
@@ -57,7 +59,7 @@ inline Quat4 conj(const Quat4& q) { return {q[0], -q[1], -q[2], -q[3]}; }
 inline Vec3 vec(const Quat4& q) { return {q[1], q[2], q[3]}; }
 // q∘i3
 inline Quat4 times_i3(const Quat4& q) { return {-q[3], q[2], -q[1], q[0]}; }
-// y3 = κ∘i3∘κ̄ for a unit κ (the instrument vertical in the frame κ maps into), digest §6.1.
+// y3 = κ∘i3∘κ̄ for a unit κ (the instrument vertical in the frame κ maps into), Chelnokov (1.8).
 inline Vec3 vertical(const Quat4& k) {
   return {2.0 * (k[1] * k[3] + k[0] * k[2]), 2.0 * (k[2] * k[3] - k[0] * k[1]),
           k[0] * k[0] - k[1] * k[1] - k[2] * k[2] + k[3] * k[3]};

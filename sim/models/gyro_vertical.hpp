@@ -2,8 +2,8 @@
 // suspension, erected by a pendulous torque and by the torquers of a correction law (the firmware,
 // firmware/control/gyro_vertical_correction.hpp), in the frame that turns with the vehicle's track.
 //
-// Book: Magnus §12.3 (digest gyro-devices.md §1.3): the torque table (12.35), errors in accelerated flight
-// (12.36)-(12.42) and in a level turn (12.43)-(12.51); built on the master equation (10.22) (§0.2,
+// Book: Magnus §12.3 (docs/models/gyro-vertical.md): the torque table (12.35), errors in accelerated flight
+// (12.36)-(12.42) and in a level turn (12.43)-(12.51); built on the master equation (10.22) (§10.2,
 // sim/models/gyro_in_rotating_frame.hpp).
 // Frame (the book's "123" vertical): axis 1 forward along the track, axis 2 to the right, axis 3 down (the
 // rotor axis); α = roll-plane tilt of the rotor axis (about axis 1), β = pitch-plane tilt (about axis 2),
@@ -20,12 +20,13 @@
 // Full form: (10.22) with these torques. Precession form (A = B = 0, the book's (12.35)-(12.51)): the rates
 // from gyro_frame_precession_rates (viscous rows solved exactly); Coulomb friction is refused there (the
 // reduced form cannot resolve sticking — use the full form).
-// [derived] Nutation hidden by the precession theory (digest §8): rows 4-5 are circulatory forces. For
-// A = B, z = α + iβ, the full form is A z'' + (d − iH) z' + (Hω + c − i f) z = 0 (d = d1 = d2); its roots sum
-// to (−d + iH)/A, so with the precession root's real part −δ (δ = f/H) the nutation root has real part
-// ≈ δ − d/A: without bearing damping the nutation GROWS at the correction rate δ. The instrument needs
-// d/A > δ (tests/oracle/gyro_vertical_test.cpp); d shifts the precession decay by d(Hω + c)/(fH) relative.
-// The erection sensor (liquid level on the rotor case) reads the tilt from the apparent vertical,
+// [derived] Nutation hidden by the precession theory (docs/models/gimbal-gyro.md#precession-model-p0):
+// rows 4-5 are circulatory forces. For A = B, z = α + iβ, the full form is
+//   A z'' + (d − iH) z' + (Hω + c − i f) z = 0      (d = d1 = d2);
+// its roots sum to (−d + iH)/A, so with the precession root's real part −δ (δ = f/H) the nutation root has
+// real part ≈ δ − d/A: without bearing damping the nutation GROWS at the correction rate δ. The instrument
+// needs d/A > δ (tests/oracle/gyro_vertical_test.cpp); d shifts the precession decay by d(Hω + c)/(fH)
+// relative. The erection sensor (liquid level on the rotor case) reads the tilt from the apparent vertical,
 // e = (α − α_L, β − β_L): what the pendulous torque and every correction law act on ((12.37), (12.44)).
 //
 // State x = [α (rad), β (rad), α' (rad/s), β' (rad/s)] — relative to the frame. Precession form: x[2], x[3]
@@ -39,6 +40,7 @@
 // Oracle: tests/oracle/gyro_vertical_test.cpp — steady-turn equilibrium z_G (12.47), resonance at ω = −ω^P,
 // the δ = 0 and astatic limits (12.48)-(12.49), the deceleration response (12.41)-(12.42), linear-correction
 // decay (corrected pairing, see firmware/control/gyro_vertical_correction.hpp), full vs precession form.
+// Docs: docs/models/gyro-vertical.md#the-gyro-vertical
 #pragma once
 
 #include <algorithm>

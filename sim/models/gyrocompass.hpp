@@ -3,9 +3,9 @@
 // so that Earth's rotation turns it into the meridian; damped by a torque about the vertical from the level
 // sensor (the firmware, firmware/control/gyrocompass_law.hpp).
 //
-// Book: Magnus ch. 13 (digest gyro-devices.md §2): fixed base (13.7)-(13.16), moving base — speed deviation
+// Book: Magnus ch. 13 (docs/models/gyrocompass.md): fixed base (13.7)-(13.16), moving base — speed deviation
 // (13.17)-(13.18), ballistic deviation and Schuler tuning (13.19)-(13.28), rolling error (13.29)-(13.39);
-// built on the master equation (10.22) (§0.2, sim/models/gyro_in_rotating_frame.hpp).
+// built on the master equation (10.22) (§10.2, sim/models/gyro_in_rotating_frame.hpp).
 // Frame (book §13.1): axis 1 up, axis 2 east, axis 3 north (geographic; it does not turn with the ship):
 //   Ω = ω_IG in these axes = [(ω^E + ω^EO) sinφ, −ω^EN, (ω^E + ω^EO) cosφ]   (13.20), = Magnus (16.51)
 // taken from the vehicle generator's geographic ENU trihedron G as Ω = (Ω_G3, Ω_G1, Ω_G2), likewise f.
@@ -17,16 +17,16 @@
 // Torques: M1 = torquer about the vertical (damping −fβ of (13.8), firmware) + the rolling-error torque
 //          − d1 α';  M2 = −c (β − β_L) (pendulous moment c = G s, (13.8)/(13.21)) + torquer (electrical
 //          pendulosity) − d2 β' (d1, d2: viscous damping of the floated sphere, 0 in the book).
-// [derived] Nutation hidden by the precession theory (digest §8): the damping torque −fβ is a circulatory
-// (non-conservative positional) force; in the full form without d1, d2 the coefficient of λ³ of the
-// characteristic quartic is 0, so the roots sum to 0 and the nutation pair grows at the rate δ/2 at which
+// [derived] Nutation hidden by the precession theory (docs/models/gyrocompass.md): the damping torque −fβ is
+// a circulatory (non-conservative positional) force; in the full form without d1, d2 the coefficient of λ³ of
+// the characteristic quartic is 0, so the roots sum to 0 and the nutation pair grows at the rate δ/2 at which
 // the compass mode decays. d1, d2 with (d1/A + d2/B)/2 > δ/2 (roughly) make it decay. Their effect on the
 // compass mode follows (11.4) with c1 = HΩ3, c2 = c + HΩ3: extra decay (d1 c2 + d2 c1)/(2(H² + d1 d2)) —
 // large for d1 (c2 >> c1), negligible for d2, so damp the nutation with d2. tests/oracle/gyrocompass_test.cpp
-// checks the growth without and the decay with damping.
-// With f = 0, the full form is (13.7) (with AΩ3, BΩ3 << H) and the precession form (13.10)/(13.22).
-// Rolling error (13.29)-(13.36), optional (swing_inertia Θ_s > 0, needs c > 0): the sphere swings about its
-// rotor axis under the athwartship acceleration b(t) of the ship's roll at height h above the roll axis,
+// checks the growth without and the decay with damping. With f = 0, the full form is (13.7) (with
+// AΩ3, BΩ3 << H) and the precession form (13.10)/(13.22). Rolling error (13.29)-(13.36), optional
+// (swing_inertia Θ_s > 0, needs c > 0): the sphere swings about its rotor axis under the athwartship
+// acceleration b(t) of the ship's roll at height h above the roll axis,
 //   (13.30)  b = h φ_s'' = −h Φ ω_s² sin ω_s t          (13.31)  Θ_s γ'' + c γ = (c/g) b cos(α + ψ)
 //   (13.35)  M1 += −(c/g) b γ sin(α + ψ)                (ψ = ship heading; the book's sign conventions)
 // whose mean (13.37) turns the compass by α^s (13.38).
@@ -40,6 +40,7 @@
 // Oracle: tests/oracle/gyrocompass_test.cpp — equilibrium (13.11), eigenvalues/period and decay (13.12),
 // strong-coupling period (13.16), speed deviation (13.23), zero ballistic deviation when Schuler-tuned
 // (13.26) and the predicted swing when not, rolling error (13.38).
+// Docs: docs/models/gyrocompass.md
 #pragma once
 
 #include <cmath>
@@ -141,7 +142,7 @@ class Gyrocompass {
   GyrocompassParams p_;
 };
 
-// Closed forms of the precession theory for the checks and the run report (digest §2.2-§2.3).
+// Closed forms of the precession theory for the checks and the run report (Magnus §13.2-13.3).
 struct GyrocompassTheory {
   double H{1.0};            // [N m s]
   double c{0.0};            // total pendulous moment (mechanical + electrical) [N m/rad]

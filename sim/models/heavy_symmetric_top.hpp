@@ -8,6 +8,7 @@
 // the centre of mass from the fixed point [N m], > 0 standing, < 0 hanging.
 // Invariants: energy ½ w·Iw + Gs Γ3, vertical momentum (Iw)·Γ (3.33), spin w3 (3.36).
 // Oracles: tests/oracle/heavy_symmetric_top_test.cpp.
+// Docs: docs/models/rigid-bodies.md#heavy-symmetric-top
 #pragma once
 
 #include "sim/models/rigid_body_state.hpp"

@@ -3,7 +3,7 @@
 // axis's stabilization motor (the analog servo, part of this plant), and commanded through the gyro's
 // torquer by the Schuler loop of the firmware (firmware/control/schuler_loop.hpp).
 //
-// Book: Magnus ch. 16 (digest gyro-devices.md §5): single-axis platform with an I-gyro (16.1)-(16.5);
+// Book: Magnus ch. 16 (docs/models/inertial-platform.md): single-axis platform with an I-gyro (16.1)-(16.5);
 // three integrating gyros (16.11)-(16.18) in their decoupled large-H/d form; Schuler tuning (16.27)-(16.50).
 // One axis (absolute platform rate ω_P about it, gyro output angle β):
 //   (16.40)  J ω_P' + H β' = −k β + M^S + M^G                      (platform + stabilization servo)
@@ -43,6 +43,7 @@
 // Oracle: tests/oracle/inertial_platform_test.cpp — servo offsets (16.2), stability bound (16.5), Schuler
 // period (16.38)/(16.44), error curves for an initial tilt (16.46)-(16.47) and a gyro drift (16.49)-(16.50),
 // level under vehicle acceleration when tuned (16.34), untuned growth (16.48).
+// Docs: docs/models/inertial-platform.md
 #pragma once
 
 #include <cmath>

@@ -1,15 +1,15 @@
 // Gyro-stabilized monorail car: car tilt φ coupled to the precession β of a top-heavy gyro case, with the
 // damper and the motor law of the book, and curve running (path turning at Ω3), with large-angle terms.
 //
-// Book: Magnus §14.1 (digest gyro-devices.md §3.1), equations (14.1)-(14.7). Small angles, (14.2), (14.6):
+// Book: Magnus §14.1, equations (14.1)-(14.7) (docs/models/monorail.md). Small angles, (14.2), (14.6):
 //   A φ'' + H β' + (H Ω3 − c) φ = M1,     B β'' + d β' + (H Ω3 − q) β − H φ' − k φ = M2
 // (Ω3 = 0 and M1 = M2 = 0: (14.2)). Geometry (Fig. 14.2): the case G pivots on the car about axis 2,
-// perpendicular to the track and horizontal at β = 0; the rotor axis 3 is vertical at β = 0 and the centre
-// of mass of case + rotor lies above axis 2 (q > 0: statically unstable like the car, c > 0, as (14.4/2)
-// requires); the car tilts by φ about the rail (axis 1, along the track; the OCR's "transverse axis" for
-// A is read as the longitudinal one, digest §11). A damper d and a motor act on axis 2; the book's motor
-// law is M^M = k φ. This is the two-gimbal gyro of (10.4) with the car as the outer gimbal, on a base (the
-// path frame) turning about the vertical at Ω3. Implemented, with I(β) = A − Q sin²β:
+// perpendicular to the track and horizontal at β = 0; the rotor axis 3 is vertical at β = 0 and the centre of
+// mass of case + rotor lies above axis 2 (q > 0: statically unstable like the car, c > 0, as (14.4/2)
+// requires); the car tilts by φ about the rail (axis 1, along the track; the OCR's "transverse axis" for A is
+// read as the longitudinal one, docs/models/monorail.md). A damper d and a motor act on axis 2; the book's
+// motor law is M^M = k φ. This is the two-gimbal gyro of (10.4) with the car as the outer gimbal, on a base
+// (the path frame) turning about the vertical at Ω3. Implemented, with I(β) = A − Q sin²β:
 //   I(β) φ'' − Q sin2β φ'β' + H cosβ β' + H Ω3 sinφ cosβ = c sinφ − q sinφ (1 − cosβ) + M1
 //   B β'' + Q sinβ cosβ φ'² − H cosβ φ' + H Ω3 cosφ sinβ = q cosφ sinβ − d β' + k φ + M2
 // Large-angle terms, each reducing to (14.2)/(14.6) at first order:
@@ -40,10 +40,12 @@
 // Assumptions: rigid car tilting about the rail (no derailment, |φ| < π/2: beyond, the car lies on the
 // ground and the model no longer applies); spin constant; no case end stops (the monorail's stability
 // window is the subject; stops as in ship_roll_damper.hpp if needed).
-// Defaults: the digest's constructed car (§3.1/§9.2): A 3000, c 2e4, B 50, q 500, H 4000, d 200; k = 0.
+// Defaults: the constructed reference car (docs/models/monorail.md): A 3000, c 2e4, B 50, q 500, H 4000,
+// d 200; k = 0.
 // Oracle: tests/oracle/monorail_test.cpp — growth rates just inside/outside the gain window
 // d(c + Aω_P²)/H < k < d(c + Aω_N²)/H vs the roots of (14.3); curve running with c > HΩ3 > q (14.7)
 // overturns at the rate of (14.6)'s positive root; energy conservation with the large-angle terms.
+// Docs: docs/models/monorail.md
 #pragma once
 
 #include <Eigen/Core>

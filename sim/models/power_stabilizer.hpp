@@ -1,7 +1,7 @@
 // Power gyro stabilizer (single-rotor, two-axis) with stabilization motors: the full nonlinear gimbal gyro
 // with disturbance torques, and, chosen at compile time, a back-EMF geared motor and structural elasticity.
 //
-// Book: Magnus §14.3 (digest gyro-devices.md §3.3, gyro-fundamentals.md App. A.3). The gyro is
+// Book: Magnus §14.3, (14.19)-(14.40) (docs/models/power-stabilizer.md). The gyro is
 // GimbalGyro (gimbal_gyro.hpp, (10.4) and its base-motion extension), reused, not copied; at small angles
 // on a fixed base it is (14.20) without the loops:
 //   A α'' + H β' = M1^S + M1^K,      B β'' − H α' = M2^S + M2^K
@@ -41,10 +41,11 @@
 //   of base rates).
 //   Fidelity = FullGimbal (default): the gyro is GimbalGyro, nutation resolved.
 //   Fidelity = PrecessionOnly: the gyro is the precession ("engineering") model P0, GimbalGyroPrecession
-//     ((10.19)-(10.22), digest gyro-fundamentals.md §8): the inertia of the gimbals is dropped, the state is
-//     [α, β, H] and the gimbal rates are outputs (rates()); rigid structure only (the elastic shaft's mode is
-//     an inertia effect). Relative error O(ε), ε = ω_P/ω_N; torque-step transients |α| ≤ 2MB/H²,
-//     |β − Mt/H| ≤ M/(Hω_N) (digest §8); singular at gimbal lock (cos β = 0) without damping.
+//     ((10.19)-(10.22), docs/models/gimbal-gyro.md#precession-model-p0): the inertia of the gimbals is
+//     dropped, the state is [α, β, H] and the gimbal rates are outputs (rates()); rigid structure only (the
+//     elastic shaft's mode is an inertia effect). Relative error O(ε), ε = ω_P/ω_N; torque-step transients
+//     |α| ≤ 2MB/H², |β − Mt/H| ≤ M/(Hω_N) (derived in docs/models/gimbal-gyro.md); singular at gimbal lock
+//     (cos β = 0) without damping.
 // State (precession): x = [α (rad), β (rad), H (N m s)].
 // Integrators: the rigid variants provide gyroscopic_pair() and run under GyroscopicExponential (the default;
 //   the back-EMF damping is in the exact flow). The elastic variant does NOT provide it, on purpose: the
@@ -58,6 +59,7 @@
 //   the roots of (14.23), the gain boundary (14.25), constant disturbances (14.21), the back-EMF bound
 //   (14.30) with the reflected inertia, and the platform frequency (14.37) and ratio (14.33) of the elastic
 //   option.
+// Docs: docs/models/power-stabilizer.md
 #pragma once
 
 #include <Eigen/Core>

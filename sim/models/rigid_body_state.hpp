@@ -1,6 +1,7 @@
 // State layout shared by the rigid-body models (free body, heavy top):
 //   x = [ w_WB_B (3) rad/s | q_WB (x, y, z, w) (4) ]
 // Principal body axes 1, 2, 3 (Magnus §1.3); axis 3 is the figure axis of a symmetric body.
+// Docs: docs/models/rigid-bodies.md#state-layout-both-bodies
 #pragma once
 
 #include <Eigen/Core>

@@ -9,13 +9,13 @@
 //   f_B = specific force of O (a_abs − g_grav) in body axes, c_B = geocentric vertical in body axes.
 // The first torque is gravity + the inertial force of the accelerated pivot acting at the centre of mass
 // (Chelnokov's y3 × lm a, (1.6)/(1.9)); the second is the gravity-gradient torque of the body, whose
-// small-tilt stiffness is −(3g/R)(C − A) — Magnus (12.57) k = m g s − (3g/R)(C − A), Chelnokov's
-// U' = (3/2)(I1 − I3)(g/R)γ3² ([OCR-fix] per the digest §11).  I_g (default = I) are the physical moments
-// used by the gradient: Chelnokov's rotor class (1.2) has L = diag(k, k, I3) ω, i.e. it moves exactly like a
-// rigid body of transverse inertia k while its gradient torque still uses the physical I1.
-// A spinning rotor (gyro pendulum) is represented by the whole body spinning about its symmetry axis at
-// ω3 = H/C: for an axisymmetric body and axisymmetric torques this is the gyrostat of Magnus (12.53)-(12.54)
-// (total axial momentum H); see make_state().
+// small-tilt stiffness is −(3g/R)(C − A) — Magnus (12.57) k = m g s − (3g/R)(C − A),
+// Chelnokov's U' = (3/2)(I1 − I3)(g/R)γ3² ([OCR-fix]: docs/models/gyro-pendulum.md). I_g (default = I) are
+// the physical moments used by the gradient: Chelnokov's rotor class (1.2) has L = diag(k, k, I3) ω, i.e. it
+// moves exactly like a rigid body of transverse inertia k while its gradient torque still uses the physical
+// I1. A spinning rotor (gyro pendulum) is represented by the whole body spinning about its symmetry axis
+// at ω3 = H/C: for an axisymmetric body and axisymmetric torques this is the gyrostat of Magnus
+// (12.53)-(12.54) (total axial momentum H); see make_state().
 //
 // State x = [ω_IB_B (rad/s) | q_IB (x, y, z, w)] (sim/models/rigid_body_state.hpp).
 // Parameters: I1, I2, I3 [kg m²] about O; m l [kg m]; optional I_g [kg m²]; M_ext [N m] body axes (held).
@@ -26,6 +26,7 @@
 // Oracles: tests/oracle/schuler_pendulum_test.cpp — unperturbability for I1 = I2 = m l R under arbitrary
 // manoeuvres (Chelnokov (2.5)), the period (12.60) for rod/sphere/4A = 3C, mistuned swing period;
 // tests/oracle/gyro_pendulum_cross_test.cpp — same motion as Magnus (12.58) and Chelnokov (1.3).
+// Docs: docs/models/gyro-pendulum.md#the-3-d-body-schuler_pendulumhpp
 #pragma once
 
 #include <cmath>

@@ -2,7 +2,7 @@
 // gimbal (axis 2) is turned by a motor, so that the rotor's spin momentum turns and puts a periodic torque
 // on the outer axis 1, which carries an oscillator (bell, vibrator).
 //
-// Book: Magnus §14.4 (digest gyro-devices.md §3.4), equations (14.41)-(14.44), Fig. 14.9. Linearized in the
+// Book: Magnus §14.4, equations (14.41)-(14.44), Fig. 14.9 (docs/models/servo-gyro.md). Linearized in the
 // rates α', β' but not in β (cf. (4.63)):
 //   (14.41)  A α'' + H cosβ β' = M1,     B β'' − H cosβ α' = M2
 // With the motor turning axis 2 uniformly, β' = Ω, β = Ωt: the gyroscopic torque on axis 1 is
@@ -37,6 +37,7 @@
 // Oracle: tests/oracle/servo_gyro_test.cpp — torque gain 1/α_A (14.44) at resonance (α_A = 5.7° → ×10.05),
 // the general gain 2/(α_A(1 + |sin φ|)) off resonance, motor power = oscillator dissipation, and energy
 // conservation in the torque-driven mode.
+// Docs: docs/models/servo-gyro.md
 #pragma once
 
 #include <Eigen/Core>

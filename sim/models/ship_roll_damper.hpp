@@ -2,7 +2,7 @@
 // case, with large-angle terms, hard end stops of the precession angle, a viscous precession brake and a
 // torque input on the precession axis (the active precession control of the firmware).
 //
-// Book: Magnus §14.2 (digest gyro-devices.md §3.2), equations (14.8)-(14.18). Small angles, (14.8):
+// Book: Magnus §14.2, equations (14.8)-(14.18) (docs/models/ship-roll-damper.md). Small angles, (14.8):
 //   A φ'' + d1 φ' + c φ + H β' = E(t),        B β'' + d2 β' + q β − H φ' = 0
 // Geometry (Fig. 14.3): the case G pivots on the hull about axis 2, parallel to the ship's transverse axis;
 // the rotor axis 3 is vertical at β = 0 and the case's centre of mass lies below axis 2 (q > 0, statically
@@ -59,6 +59,7 @@
 // Oracles: tests/oracle/ship_roll_damper_test.cpp — steady amplitudes vs (14.11), the invariant points
 // (14.18), the minimax d2, the locked ship (14.15), energy conservation with the large-angle terms and the
 // stops, and the stop's restitution e^-2.
+// Docs: docs/models/ship-roll-damper.md
 #pragma once
 
 #include <Eigen/Core>

@@ -1,6 +1,7 @@
 // Translational harmonic vibration of the base (vertical and horizontal), entering the gyro through the
 // specific force: Magnus 11.4.3 (11.53) a_i = s_i0 Ω² cos Ωt (anisoelastic drift), Chelnokov's vertical-line
-// vibration of the pivot (digest §7). Base rotation is supplied separately; VibratingBase adds the two.
+// vibration of the pivot (Chelnokov §4; docs/models/suspension-motion.md). Base rotation is supplied
+// separately; VibratingBase adds the two.
 //
 //   a_B(t) = Σₖ sₖ νₖ² cos(νₖ t + ψₖ)          acceleration of the suspension point, base axes [m/s²]
 //            (displacement −Σ sₖ cos(νₖ t + ψₖ) [m]; sₖ is a vector: its direction picks vertical/horizontal)
@@ -12,6 +13,7 @@
 // (use prescribed_base_rotation.hpp). Stateless, allocation-free, K sin/cos per call.
 // Test: tests/unit/base_motion_generators_test.cpp (a_B = second derivative of the displacement; up_B
 // offset).
+// Docs: docs/models/suspension-motion.md#vibration
 #pragma once
 
 #include <array>

@@ -1,7 +1,7 @@
 // Suspension-point motion over a rotating spherical Earth: a vehicle at altitude 0 driven by a manoeuvre
 // sequence (great-circle legs, coordinated turns, along-track acceleration), sampled at any time with the
 // absolute kinematics a gyro instrument needs (Magnus 12.3.3 (12.52)-(12.58), 13.3, 16.4.4 (16.51);
-// Chelnokov §1-§2 (1.6)-(1.7), (2.4)-(2.7); digest gyro-devices.md §1.3, §6.1-§6.6, §7).
+// Chelnokov §1-§2 (1.6)-(1.7), (2.4)-(2.7); docs/models/suspension-motion.md).
 //
 // Frames (all right-handed; "x_A" = components of x in frame A; q_AB rotates B components into A: x_A = q_AB x_B)
 //   I  inertial, origin at the Earth's centre, I3 = Earth's spin axis (north), I1 through Greenwich at t = 0.
@@ -39,6 +39,7 @@
 // ~40 trig calls (+ 8 per 0.5 rad of arc for an accelerating great-circle leg, Gauss-Legendre for ∫ sinφ).
 // Test: tests/unit/earth_vehicle_test.cpp (finite differences of positions and quaternions against the
 // analytic velocities, accelerations and angular velocities; (16.51); Darboux relations of Chelnokov §2.4).
+// Docs: docs/models/suspension-motion.md#vehicle-over-the-rotating-earth
 #pragma once
 
 #include <algorithm>

@@ -34,6 +34,7 @@
 // steps. Tests: tests/oracle/wave_spectrum_test.cpp (sample variance vs m0),
 // tests/determinism/motion_determinism_test.cpp, tests/alloc/motion_alloc_test.cpp,
 // tests/unit/base_motion_generators_test.cpp (grid vs direct).
+// Docs: docs/models/suspension-motion.md#waves
 #pragma once
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // Suspension point on a Kepler ellipse (free flight in a central Newtonian field) — Chelnokov §4, the
-// "Kepler motion of the suspension point" case (digest gyro-devices.md §6.8, §6.10 item 4): with gravity
+// "Kepler motion of the suspension point" case (docs/models/gyro-pendulum.md, Kepler oracle): with gravity
 // evaluated at O the apparent acceleration (specific force) a = w − g_grav is exactly zero, so a gyro
 // pendulum hung at O obeys z'' + ¼Ω²z = 0 with constant Ω = |L|/k (4.1).
 //
@@ -14,6 +14,7 @@
 // Parameters: GM [m³/s²] > 0, a [m] > 0, 0 ≤ e < 1 (parabolic and hyperbolic flight are not provided),
 // angles [rad]. Stateless, allocation-free, deterministic. Test: tests/unit/kepler_orbit_test.cpp
 // (differences of position and attitude; energy and angular momentum; period).
+// Docs: docs/models/suspension-motion.md#kepler-orbit
 #pragma once
 
 #include <cmath>

@@ -4,8 +4,9 @@
 // small amplitudes). Generalizes models::HarmonicBaseRotation (one harmonic about one axis), which it
 // reproduces for roll only. Returns models::BaseSample (base_motion.hpp) for the gimbal and device models.
 //
-// Attitude (digest §12.1, a^F = Rz(ψ) Ry(ϑ) Rx(φ)):  R_WB = Rz(ψ) Ry(θ) Rx(φ), base = world axes at zero
-// angles, world axis 3 up. Each angle  a(t) = a0 + ȧ0 t + Σₖ Aₖ sin(νₖ t + ψₖ), with analytic a', a''.
+// Attitude (Magnus §12.1, (12.2)-(12.3): a^F = Rz(ψ) Ry(ϑ) Rx(φ)):  R_WB = Rz(ψ) Ry(θ) Rx(φ), base = world
+// axes at zero angles, world axis 3 up.
+// Each angle  a(t) = a0 + ȧ0 t + Σₖ Aₖ sin(νₖ t + ψₖ), with analytic a', a''.
 //   ω_B = (φ' − ψ' sθ,  θ' cφ + ψ' cθ sφ,  −θ' sφ + ψ' cθ cφ)                             [rad/s]
 //   ω̇_B = (φ'' − ψ'' sθ − ψ'θ' cθ,
 //          θ'' cφ − θ'φ' sφ + ψ'' cθ sφ − ψ'θ' sθ sφ + ψ'φ' cθ cφ,
@@ -19,6 +20,7 @@
 // from ±90° is not required (no Euler-rate inversion is done). Stateless, allocation-free, 3K+6 sin/cos per
 // call. Test: tests/unit/base_motion_generators_test.cpp (ω_B and ω̇_B against finite differences of the
 // attitude).
+// Docs: docs/models/suspension-motion.md#base-at-rest-and-prescribed-rotation
 #pragma once
 
 #include <array>

@@ -5,6 +5,7 @@
 // From one regular wave of amplitude a [m] in deep water, the effective-wave-slope model (wave_transfer.hpp)
 // gives E0 = c κ (ω²/g) a: from_wave(). Stateless; one cos per call. Test:
 // tests/unit/base_motion_generators_test.cpp.
+// Docs: docs/models/suspension-motion.md#waves
 #pragma once
 
 #include <cmath>

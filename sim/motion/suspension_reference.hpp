@@ -7,6 +7,7 @@
 // (sim/motion/kepler_orbit.hpp, orbital trihedron), and SampledReference, which holds one sample per step
 // and interpolates linearly in between (what the scenes use: the generator costs more than the models).
 // Units: rad/s, rad/s², m/s², 1/s². Frames as in earth_vehicle.hpp (x_I = q_IZ x_Z). Allocation-free.
+// Docs: docs/models/suspension-motion.md#suspension-reference
 #pragma once
 
 #include <cmath>

@@ -20,6 +20,7 @@
 // otherwise). Assumptions: deep water, long-crested (no spreading), stationary sea state. Construction only:
 // nothing here runs per tick. Test: tests/oracle/wave_spectrum_test.cpp (m0 by independent quadrature, peak
 // at ωp, γ = 1 ≡ PM).
+// Docs: docs/models/suspension-motion.md#waves
 #pragma once
 
 #include <algorithm>

@@ -18,6 +18,7 @@
 //
 // Units: g [m/s²] (standard gravity 9.80665 by default), ω [rad/s]. Test:
 // tests/unit/base_motion_generators_test.cpp.
+// Docs: docs/models/suspension-motion.md#waves
 #pragma once
 
 #include <array>

@@ -1,13 +1,15 @@
 // Exact body rates of a torque-free asymmetric rigid body (Euler-Poinsot), Jacobi elliptic form.
+// Docs: docs/models/rigid-bodies.md#free-rigid-body
 //
-// Book: Magnus §2.3.1, digest gyro-fundamentals.md §2.3 and Appendix B. With the principal moments
-// ordered A > B > C and x = ω2, the first integrals 2T = Aω1² + Bω2² + Cω3², H² = A²ω1² + B²ω2² + C²ω3²
-// (2.1)-(2.2) reduce Euler's equations (1.84) to the quadrature (2.11)-(2.12), solved by
+// Book: Magnus §2.3.1 (with the corrections listed in docs/models/rigid-bodies.md). With the principal
+// moments ordered A > B > C and x = ω2, the first integrals 2T = Aω1² + Bω2² + Cω3²,
+// H² = A²ω1² + B²ω2² + C²ω3² (2.1)-(2.2) reduce Euler's equations (1.84) to the quadrature
+// (2.11)-(2.12), solved by
 //
 //   case a, H² < 2TB (motion about the min-moment axis C), (2.15):
 //     ω1 = -√((H²-2TC)/(A(A-C))) cn τ,  ω2 = √((H²-2TC)/(B(B-C))) sn τ,  ω3 = √((2TA-H²)/(C(A-C))) dn τ
 //     k² = (H²-2TC)(A-B) / ((2TA-H²)(B-C)),  τ = √((B-C)(2TA-H²)/(ABC)) (t - t0)
-//       (the rate printed first in the book, x2·√((A-B)(B-C)/(AB)), is wrong: /(AC); digest Appendix B)
+//       (the rate printed first in the book, x2·√((A-B)(B-C)/(AB)), is wrong: /(AC), checked numerically)
 //     T_s = 4K(k) √(ABC / ((2TA-H²)(B-C)))                                                   (2.16)
 //   case b, H² > 2TB (motion about the max-moment axis A), (2.17):
 //     ω1 = √((H²-2TC)/(A(A-C))) dn τ,  ω2 = √((2TA-H²)/(B(A-B))) sn τ,  ω3 = -√((2TA-H²)/(C(A-C))) cn τ
@@ -15,7 +17,7 @@
 //     T_s = 4K(k) √(ABC / ((H²-2TC)(A-B)))                                                   (2.18)
 //   case c, H² = 2TB (separatrix, the Dzhanibekov flip), (2.19):
 //     ω1 = √(2T(B-C)/(A(A-C))) sech τ,  ω2 = √(2T/B) tanh τ,  ω3 = -√(2T(A-B)/(C(A-C))) sech τ
-//     τ = √(2T/B) √((A-B)(B-C)/(AC)) (t - t0)     (rate not printed in the book; digest Appendix B)
+//     τ = √(2T/B) √((A-B)(B-C)/(AC)) (t - t0)     (rate not printed in the book; it follows from (2.12))
 //
 // Every other solution is one of these with a phase τ0 and the sign pattern that Euler's equations allow
 // (the product of the three signs is -1 in cases a and b); the constructor finds both from ω(t0).
@@ -30,7 +32,7 @@
 // ω(t) costs one Jacobi evaluation (~1 µs): an oracle for tests, not an in-loop flow.
 //
 // Units: inertia [kg m²], rates [rad/s], time [s].
-// Held to: tests/oracle/free_rigid_body_test.cpp (digest reference cases E1-E3, Euler-equation residual,
+// Held to: tests/oracle/free_rigid_body_test.cpp (reference cases E1-E3, Euler-equation residual,
 // and every integrator of sim/dynamics against it).
 #pragma once
 

@@ -1,6 +1,7 @@
 // Closed forms for the linear gimbal gyro pendulum with a horizontal outer axis, Magnus (10.11)-(10.17):
 //   A α'' + H β' - Gs α = M1,   B β'' - H α' - Gs β = M2
 // and its pure modes, used as test oracles and by the demo.
+// Docs: docs/models/gimbal-gyro.md#nutation-precession-and-the-characteristic-equation
 #pragma once
 
 #include <cmath>

@@ -1,6 +1,7 @@
 // Closed forms for the heavy symmetric top on a fixed point (Lagrange case), used as test oracles.
+// Docs: docs/models/rigid-bodies.md#heavy-symmetric-top
 //
-// Book: Magnus §3.3.2, digest gyro-fundamentals.md §3.3.a. With u = cos θ (θ: figure axis from the upward
+// Book: Magnus §3.3.2. With u = cos θ (θ: figure axis from the upward
 // vertical), spin ω3 = ω0, vertical momentum H0 and energy E0 (3.36)-(3.38), u obeys (3.46)-(3.47)
 //   u'² = U(u) = ((2E0 - Cω0²)/A - (2Gs/A) u)(1 - u²) - (H0/A - (Cω0/A) u)²
 //        = (2Gs/A)(u - u1)(u - u2)(u - u3),      u1 ≤ u ≤ u2 ≤ 1 ≤ u3   (standing top, Gs > 0)
@@ -22,11 +23,12 @@
 //     2Gs/(Cω0(1 + √d)) to avoid cancellation (and to give Gs/(Cω0), (3.61), at θ0 = π/2);
 //   * the sleeping top (3.67)-(3.70): stable iff a ≥ 1; for a < 1 it falls to cos θ = 2a - 1; after an
 //     upright start with transverse rate ω_t the exact turning points are u = 1 and the roots of
-//       2g u² - (ω_t² + 4ag) u - (ω_t² + 2g - 4ag) = 0,   g = Gs/A          [D, the digest's (3.69) roots]
+//       2g u² - (ω_t² + 4ag) u - (ω_t² + 2g - 4ag) = 0,   g = Gs/A          [D, the roots the OCR lost
+//       from (3.69)]
 //     whose smaller root is the lowest cos θ reached (≈ 2a - 1 for a < 1, just below 1 for a > 1).
 //
 // Units: A, C [kg m²], Gs [N m], rates [rad/s], time [s]. Standing top only (Gs > 0).
-// Held to: tests/oracle/heavy_symmetric_top_test.cpp (digest cases L1-L3, and the integrators against it).
+// Held to: tests/oracle/heavy_symmetric_top_test.cpp (reference cases L1-L3, and the integrators against it).
 #pragma once
 
 #include <algorithm>

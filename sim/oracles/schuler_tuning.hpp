@@ -1,6 +1,7 @@
 // Closed forms for Schuler-tuned pendulums and gyro pendulums on a moving pivot — Magnus §12.3.3
-// (12.57)-(12.68) and Chelnokov §2, §4 (digest gyro-devices.md §1.3, §6.4-§6.8, §9.2). Test oracles and the
+// (12.57)-(12.68) and Chelnokov §2, §4 (docs/models/gyro-pendulum.md). Test oracles and the
 // scene's "book" figures.
+// Docs: docs/models/gyro-pendulum.md
 #pragma once
 
 #include <cmath>

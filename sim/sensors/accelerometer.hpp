@@ -12,6 +12,7 @@
 // Assumptions: at the suspension point (lever arms are in the base motion), no cross-axis or rectification
 // terms. Hot path: allocation-free, ≤ 2 Gaussians from the caller's generator.
 // Test: tests/unit/sensors_test.cpp (reads g n·up at rest, bias), tests/alloc/motion_alloc_test.cpp.
+// Docs: docs/models/rate-gyros.md#measurement-chain
 #pragma once
 
 #include "sim/models/base_motion.hpp"

@@ -1,5 +1,5 @@
 // Shaft angle encoder: the angle of a gimbal or motor shaft quantized to integer counts (the "encoder
-// quantization" of the gimbal drive, DESIGN §4).
+// quantization" of the gimbal drive, docs/models/drives.md).
 //
 //   q = (θ − θ0) · CPR / 2π
 //   count = ⌊q⌋ (kFloor: an edge counter reads the last edge passed; error θ − θ̂ ∈ [0, 1) LSB, mean ½ LSB)
@@ -11,6 +11,7 @@
 // (angle of count 0) [rad]; mode; rounding. A non-finite angle reads as count 0 (no undefined conversion);
 // |q| is clamped to 2⁶² counts. Stateless, allocation-free.
 // Test: tests/unit/sensors_test.cpp (exact counts at and around every edge of a sweep, wrap, offset).
+// Docs: docs/models/rate-gyros.md#measurement-chain
 #pragma once
 
 #include <cmath>

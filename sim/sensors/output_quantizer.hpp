@@ -6,6 +6,7 @@
 // Parameters: lsb [unit] (0 ⇒ no quantization), full_scale [unit] (0 ⇒ no saturation). A NaN passes through
 // unchanged so the controller's fault monitor sees it. Stateless, allocation-free.
 // Test: tests/unit/sensors_test.cpp.
+// Docs: docs/models/rate-gyros.md#measurement-chain
 #pragma once
 
 #include <cmath>

@@ -14,6 +14,7 @@
 // path: measure() is allocation-free, ≤ 2 Gaussians from the caller's generator (draw order: sensor_noise).
 // Test: tests/unit/sensors_test.cpp (DC gain 1, −3 dB at f_bw, σ_w = N/√T, bias), determinism and alloc
 // tests.
+// Docs: docs/models/rate-gyros.md#measurement-chain
 #pragma once
 
 #include "sim/models/base_motion.hpp"

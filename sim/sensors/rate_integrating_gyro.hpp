@@ -1,7 +1,7 @@
 // Single-degree-of-freedom gyro as a sensor with its own dynamics: the rotor's case (float or inner gimbal)
 // turns about the output axis by β against a spring c2 and a damper d2 when the instrument case turns about
 // the input axis. One model for the rate gyro (P), the rate-integrating gyro (I) and the double-integrating
-// gyro (I²) of Magnus ch. 15 (digest gyro-devices.md §4.1-§4.3); sim/sensors/rate_gyro.hpp is the
+// gyro (I²) of Magnus ch. 15, §15.1-15.3 (docs/models/rate-gyros.md); sim/sensors/rate_gyro.hpp is the
 // measurement-chain model (bandwidth filter, noise, quantizer) of the same instrument when only its output
 // matters — this header is the physics behind that filter.
 //
@@ -28,6 +28,7 @@
 // (15.16), (15.19); free-motion frequency and damping of (15.2); the I-gyro time constant (15.14); −3 dB
 // bandwidth of the P-gyro from the transfer function; the turn-indicator reading (15.6).
 // Hot path: update() is allocation-free, O(substeps).
+// Docs: docs/models/rate-gyros.md#single-degree-of-freedom-gyro-magnus-151-153
 #pragma once
 
 #include <cmath>

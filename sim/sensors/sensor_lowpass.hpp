@@ -11,7 +11,7 @@
 //                 ωn is set so the −3 dB frequency is f_bw for any ζ:
 //                 ω_bw/ωn = √(1 − 2ζ² + √((1 − 2ζ²)² + 1))   (= 1 at ζ = 1/√2, Butterworth).
 //                 Magnus's P-gyro (15.2) B β'' + d2 β' + c2 β = H Ω1 is this filter with ωn = √(c2/B),
-//                 ζ = d2/(2√(B c2)); practical natural frequencies 10-60 Hz (digest §4.2).
+//                 ζ = d2/(2√(B c2)); practical natural frequencies 10-60 Hz (Magnus §15.2).
 //   update(u_k) takes the input sampled now (held over the interval just ended) and returns y_k: no extra
 //   delay (latency is the scene's). DC gain is 1 (−C A⁻¹ B = 1 is preserved by the ZOH equivalent); the gain
 //   at f_bw is 1/√2 up to the O((ω T)²) difference between the discrete and continuous responses (at f_bw =
@@ -22,6 +22,7 @@
 // State: y [input unit], ẏ [input unit/s] (second order). Parameters: order, f_bw [Hz] > 0, ζ [-] > 0, T [s]
 // > 0. Hot path: update() is 1 (first order) or 4 multiply-adds, allocation-free. Test:
 // tests/unit/sensors_test.cpp.
+// Docs: docs/models/rate-gyros.md#measurement-chain
 #pragma once
 
 #include <cmath>

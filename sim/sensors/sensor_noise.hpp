@@ -13,6 +13,7 @@
 // density draws nothing. Hot path: ≤ 2 Gaussians per sample, allocation-free.
 // Test: tests/unit/sensors_test.cpp (σ_w against N/√T within a chi-square bound, bias increments against
 // K√T).
+// Docs: docs/models/rate-gyros.md#measurement-chain
 #pragma once
 
 #include <cmath>

@@ -3,7 +3,8 @@
 // (tests/support/alloc_counter.hpp), and Eigen's EIGEN_RUNTIME_NO_MALLOC check is armed (eigen_assert
 // reports even with NDEBUG). The runs exercise every branch of the hot path: voltage clamp, current clamp,
 // stick, breakaway, landing, reversal, disabled bridge, saturated and unsaturated PI. The cost per step is
-// printed (measured, not asserted: DESIGN §10).
+// printed (measured, not asserted: docs/architecture.md, tests — compute time is a benchmark, not a unit-test
+// assertion).
 #include <atomic>
 #include <chrono>
 #include <cstdio>

@@ -1,4 +1,4 @@
-// Zero heap allocations in the plant and controller loops of the two-process mode (issue 4), counted over
+// Zero heap allocations in the plant and controller loops of the two-process (LCM) mode, counted over
 // both loops from their first tick to their last for every shipped scene: encode, publish, receive, decode,
 // the frame checks, the statistics and the device code. The transport is the in-memory bus (the loops' code
 // is the same over LCM; LCM's own receive thread may allocate and is kept off the loop thread, see

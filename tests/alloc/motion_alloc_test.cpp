@@ -1,5 +1,6 @@
 // Zero heap allocations in the per-tick path of the suspension motion and sensor models, over 1e6 ticks after
-// construction (DESIGN §3). Construction itself is also allocation-free (fixed-size arrays only).
+// construction (docs/architecture.md, allocation-free rules). Construction itself is also allocation-free
+// (fixed-size arrays only).
 #include <gtest/gtest.h>
 
 #include <numbers>

@@ -1,6 +1,6 @@
-// Lockstep between the plant and controller loops (issue 4) reproduces the in-process run bit for bit:
-// figures and signals.csv, every shipped scene, 50 000 ticks, over the in-memory bus (no network needed; the
-// same over LCM udpm:// is tests/lcm/lcm_lockstep_test.cpp).
+// Lockstep between the plant and controller loops (the two-process LCM mode) reproduces the in-process run
+// bit for bit: figures and signals.csv, every shipped scene, 50 000 ticks, over the in-memory bus (no network
+// needed; the same over LCM udpm:// is tests/lcm/lcm_lockstep_test.cpp).
 #include <gtest/gtest.h>
 
 #include "tests/support/pair_in_threads.hpp"

@@ -1,9 +1,10 @@
-// Lockstep over CAN FD on vcan is bit-identical to the in-process run (DESIGN §2): for every shipped scene,
-// `gyrostab run SCENE --transport can` (plant and controller processes, SocketCAN, the frame map with CRC and
-// alive counters) against `gyrostab run SCENE` — report.json "figures" and signals.csv compared byte for
-// byte — shortened with --ticks to keep the label fast in the VM. A scene whose bus load exceeds 70 % is
-// refused instead (exit 2), and the test checks that exactly the scenes the bus-load arithmetic refuses are
-// refused. The report's CAN section must show a clean bus: every set completed, nothing rejected.
+// Lockstep over CAN FD on vcan is bit-identical to the in-process run (docs/architecture.md, the loop): for
+// every shipped scene, `gyrostab run SCENE --transport can` (plant and controller processes, SocketCAN, the
+// frame map with CRC and alive counters) against `gyrostab run SCENE` — report.json "figures" and signals.csv
+// compared byte for byte — shortened with --ticks to keep the label fast in the VM. A scene whose bus load
+// exceeds 70 % is refused instead (exit 2), and the test checks that exactly the scenes the bus-load
+// arithmetic refuses are refused. The report's CAN section must show a clean bus: every set completed,
+// nothing rejected.
 #include <gtest/gtest.h>
 
 #include <cctype>

@@ -1,4 +1,5 @@
-// Fault reactions of the plant and controller processes over LCM (DESIGN §9), each through the fault
+// Fault reactions of the plant and controller processes over LCM (docs/architecture.md, faults and safe
+// states), each through the fault
 // injections of `gyrostab run --transport lcm` or by killing a process:
 //   controller: sensor frames missing for N ticks ⇒ hold, then the safe state, status says why;
 //               NaN sensor frames ⇒ the fault monitor holds the last good one;

@@ -1,4 +1,5 @@
-// Lockstep over LCM udpm:// is bit-identical to the in-process run of the same scene and seed (DESIGN §2):
+// Lockstep over LCM udpm:// is bit-identical to the in-process run of the same scene and seed
+// (docs/architecture.md, the loop):
 // report.json "figures" and signals.csv compared byte for byte, for every shipped scene (shortened with
 // --ticks to keep the label fast on a small machine), whatever the timing (--jitter), with the processes
 // started by `run --transport lcm` or by hand in either order, and with two runs sharing one bus (channel

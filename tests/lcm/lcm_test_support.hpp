@@ -1,6 +1,7 @@
 // Support for the `lcm` label: tests that run the gyrostab program as plant and controller processes over
 // LCM udpm://. Each test executable moves itself into a private network namespace before anything else
-// (unshare(CLONE_NEWNET); lo up, multicast on, 224.0.0.0/4 routed to lo — DESIGN §8), so no datagram leaves
+// (unshare(CLONE_NEWNET); lo up, multicast on, 224.0.0.0/4 routed to lo — docs/architecture.md, messages and
+// transports), so no datagram leaves
 // the process tree and parallel tests never share a bus. Where that is not permitted (not root, no
 // CAP_SYS_ADMIN, a seccomp profile) the test prints why and exits 77, which ctest reports as skipped.
 // The processes it starts inherit the namespace. Plots are switched off (GYROSTAB_PLOT_SCRIPT=/dev/null).

@@ -1,9 +1,10 @@
-// Chelnokov's quaternion equations of gyro-pendulum systems (sim/models/gyro_pendulum_quaternion.hpp) as
-// test oracles (digest gyro-devices.md §6.10): the (1.3)-(1.5) residual and the (1.4) closed form of χ on a
-// 3-D Newton–Euler run (sim/models/schuler_pendulum.hpp); the κ, λ and z forms giving the same motion as the
-// 3-D body ((3.5)-(3.6), (4.5)-(4.6)); unperturbability for the azimuth-free (2.5) and the natural Darboux
-// (2.7) trihedra; the energy integral (2.11); the stability condition (2.14) on both sides of the limit; the
-// harmonic oscillator z'' + ¼Ω²z = 0 with constant Ω for a pivot in Kepler flight (§4).
+// Chelnokov's quaternion equations of gyro-pendulum systems (sim/models/gyro_pendulum_quaternion.hpp) as test
+// oracles (docs/models/gyro-pendulum.md#test-oracles-from-chelnokov): the (1.3)-(1.5) residual and the (1.4)
+// closed form of χ on a 3-D Newton–Euler run (sim/models/schuler_pendulum.hpp); the κ, λ and z forms giving
+// the same motion as the 3-D body ((3.5)-(3.6), (4.5)-(4.6)); unperturbability for the azimuth-free (2.5) and
+// the natural Darboux (2.7) trihedra; the energy integral (2.11); the stability condition (2.14) on both
+// sides of the limit; the harmonic oscillator z'' + ¼Ω²z = 0 with constant Ω for a pivot in Kepler flight
+// (§4).
 #include "sim/models/gyro_pendulum_quaternion.hpp"
 
 #include <gtest/gtest.h>
@@ -39,7 +40,7 @@ std::string num(double v) {
 
 // A reference trihedron turning with an arbitrary prescribed ω°_Z(t) (yaw/pitch/roll harmonics, analytic
 // rates), an arbitrary specific force of the pivot (inertial axes) and a gravity gradient: every term of
-// (1.3) is of order 1 (digest §6.10 item 1).
+// (1.3) is of order 1 (the equation-residual oracle, docs/models/gyro-pendulum.md).
 struct SyntheticReference {
   motion::PrescribedBaseRotation<2> rot;
   SyntheticReference() {
@@ -77,7 +78,7 @@ models::SchulerPendulumParams rigid_equivalent(const models::ChelnokovParams& c)
   return p;
 }
 
-// The digest's §6.10 item 1 member of the H = 0 class: k = 2 ≠ I1g (rotors), I3 = 0.7, l m = 1.5, with a
+// The equation-residual oracle's member of the H = 0 class: k = 2 ≠ I1g (rotors), I3 = 0.7, l m = 1.5, with a
 // gravity gradient — every term of (1.3) of order 1.
 models::ChelnokovParams general_member() {
   models::ChelnokovParams c;
@@ -91,12 +92,12 @@ models::ChelnokovParams general_member() {
 }
 
 TEST(Chelnokov, Equation13ResidualAndChi14OnARigidBodyRun) {
-  // Digest §6.10 item 1: H = 0 class member with k = 2 ≠ I1g (rotors), I3 = 0.7, l m = 1.5, body torque
-  // M_Y = (0.05, −0.03, 0.02), arbitrary ω°_Z, f and gradient. The 3-D body runs with RK4 at h = 2.5e-4 s;
-  // κ'' is a central difference (δ = h) of κ' formed from the body state: truncation δ²|κ''''|/6, measured
-  // 2.9e-6 at δ = 1e-3 s, so 1.8e-7 here; RK4 state error ~1e-14, rounding ε/δ ~ 4e-13. Tolerance 1e-6 on
-  // terms of order 1 (a wrong sign or factor in any (1.3) term gives O(0.1)). χ: the constraint
-  // form, (1.4)'s closed form and (1.4)'s first form agree to rounding (1e-12).
+  // The equation-residual oracle (docs/models/gyro-pendulum.md): H = 0 class member with k = 2 ≠ I1g
+  // (rotors), I3 = 0.7, l m = 1.5, body torque M_Y = (0.05, −0.03, 0.02), arbitrary ω°_Z, f and gradient. The
+  // 3-D body runs with RK4 at h = 2.5e-4 s; κ'' is a central difference (δ = h) of κ' formed from the body
+  // state: truncation δ²|κ''''|/6, measured 2.9e-6 at δ = 1e-3 s, so 1.8e-7 here; RK4 state error ~1e-14,
+  // rounding ε/δ ~ 4e-13. Tolerance 1e-6 on terms of order 1 (a wrong sign or factor in any (1.3) term gives
+  // O(0.1)). χ: the constraint form, (1.4)'s closed form and (1.4)'s first form agree to rounding (1e-12).
   const models::ChelnokovParams c = general_member();
   const SyntheticReference ref;
   using Body = models::SchulerPendulum<SyntheticReference>;

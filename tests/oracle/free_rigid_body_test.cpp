@@ -1,11 +1,13 @@
-// Free rigid body (Euler-Poinsot) against its exact Jacobi-elliptic solution, Magnus §2.3 / digest §2.1-2.5.
+// Free rigid body (Euler-Poinsot) against its exact Jacobi-elliptic solution, Magnus §2.1-2.5 (§2.3.1).
+// Docs: docs/models/rigid-bodies.md (the reference cases E1-E3, A1, A2 and why each tolerance is its size).
 //
 // Oracle: sim/oracles/euler_jacobi.hpp. Plant: sim/models/free_rigid_body.hpp. Integrators: Rk4,
 // RotorStrang, RotorYoshida4, ImplicitMidpoint (sim/dynamics).
 // Tolerances: each bound is ~2-3x the error measured with these exact steps (Release, GCC 12, x86-64), and
 // the order of each method is checked separately by halving h, so a bound is never the only evidence.
-// Reference magnitudes from numerics.md §2 (case A1: I = (1, 2, 3), ω0 = (2, 0.5, 1), 100 s; case A2:
-// ω0 = (0.01, 10, 0.01), 1 - k² = 2e-6). Where our numbers differ from numerics.md the comment says why.
+// Reference magnitudes from the integrator survey (docs/models/integrators.md, free body: case A1:
+// I = (1, 2, 3), ω0 = (2, 0.5, 1), 100 s; case A2: ω0 = (0.01, 10, 0.01), 1 - k² = 2e-6). Where our numbers
+// differ from the survey's the comment says why.
 #include "sim/models/free_rigid_body.hpp"
 
 #include <gtest/gtest.h>
@@ -33,7 +35,7 @@ using oracles::EulerPoinsotCase;
 
 constexpr double kPi = std::numbers::pi;
 
-// Case A1 of numerics.md §2.1: a generic tumble about the min-moment axis (k² = 0.765, T_s = 7.34 s).
+// Case A1 of the integrator survey: a generic tumble about the min-moment axis (k² = 0.765, T_s = 7.34 s).
 const Vec3 kInertiaA1{1.0, 2.0, 3.0};
 const Vec3 kRateA1{2.0, 0.5, 1.0};
 
@@ -87,19 +89,20 @@ double relative_period_error(const Vec3& inertia, const Vec3& w0, double h, doub
 // The oracle itself.
 
 TEST(EulerJacobiOracle, ReproducesDigestCaseE1ModulusAndPeriod) {
-  // E1 (digest §2.3, §10.2): A, B, C = 3, 2, 1; ω0 = (-0.3, 0, 2) ⇒ case a, k² = 0.06750, T_s = 5.53688.
+  // E1 (Magnus §2.3.1, case a; docs/models/rigid-bodies.md): A, B, C = 3, 2, 1; ω0 = (-0.3, 0, 2) ⇒ case a,
+  // k² = 0.06750, T_s = 5.53688.
   const EulerJacobiSolution s({3.0, 2.0, 1.0}, {-0.3, 0.0, 2.0});
   EXPECT_EQ(s.regime(), EulerPoinsotCase::kAboutMinAxis);
-  // The digest prints 4-6 significant digits: tolerance = half a unit in its last digit.
+  // The reference values are given to 4-6 significant digits: tolerance = half a unit in the last digit.
   EXPECT_NEAR(s.modulus_squared(), 0.06750, 5e-6);
   EXPECT_NEAR(s.period(), 5.53688, 5e-6);
-  // The small-amplitude formula gives 5.44140 (digest): the elliptic correction is 1.8 %, so this
+  // The small-amplitude formula gives 5.44140: the elliptic correction is 1.8 %, so this
   // distinguishes the elliptic period from its linearisation.
   EXPECT_GT(s.period() - 5.44140, 0.09);
 }
 
 TEST(EulerJacobiOracle, ReproducesDigestCaseE2ModulusAndPeriod) {
-  // E2: ω0 = (2, 0, -0.4) ⇒ case b, k² = 0.0133, T_s = 3.1521 (digest prints 3-5 digits).
+  // E2: ω0 = (2, 0, -0.4) ⇒ case b, k² = 0.0133, T_s = 3.1521 (reference given to 3-5 digits).
   const EulerJacobiSolution s({3.0, 2.0, 1.0}, {2.0, 0.0, -0.4});
   EXPECT_EQ(s.regime(), EulerPoinsotCase::kAboutMaxAxis);
   EXPECT_NEAR(s.modulus_squared(), 0.0133, 5e-5);
@@ -112,7 +115,7 @@ TEST(EulerJacobiOracle, ReproducesDigestCaseE3SeparatrixRateAndTanhSechLaw) {
   const double A = 3.0, B = 2.0, C = 1.0, two_T = 2.0;
   const EulerJacobiSolution s({A, B, C}, {1.0 / std::sqrt(3.0), 0.0, -1.0});
   EXPECT_EQ(s.regime(), EulerPoinsotCase::kSeparatrix);
-  EXPECT_NEAR(s.tau_rate(), 0.57735, 5e-6);  // digest: 0.57735 /s
+  EXPECT_NEAR(s.tau_rate(), 0.57735, 5e-6);  // reference E3: 0.57735 /s
   // (2.19) written out independently of the oracle; agreement to round-off (1e-14 of |ω| ≈ 1.2).
   const double rate = std::sqrt(two_T / B) * std::sqrt((A - B) * (B - C) / (A * C));
   for (double t : {0.5, 2.0, 7.5, 20.0}) {
@@ -128,7 +131,7 @@ TEST(EulerJacobiOracle, ReproducesDigestCaseE3SeparatrixRateAndTanhSechLaw) {
 }
 
 TEST(EulerJacobiOracle, PeriodTendsToTheSmallAmplitudeFormulaNearEachStableAxis) {
-  // Digest §2.3: case a T_s → (2π/ω3)√(AB/((A-C)(B-C))), case b T_s → (2π/ω1)√(BC/((A-B)(A-C))).
+  // Magnus (2.16), (2.18): case a T_s → (2π/ω3)√(AB/((A-C)(B-C))), case b T_s → (2π/ω1)√(BC/((A-B)(A-C))).
   // With a 1e-4 relative transverse rate, k² ≈ 4e-9, so T_s/T_lin - 1 = O(k², amplitude²) ≈ 1e-8;
   // an error in the τ rate or in K shows at O(1). Bound 1e-7.
   const double A = 3.0, B = 2.0, C = 1.0;
@@ -188,8 +191,8 @@ TEST(EulerJacobiOracle, SolvesEulerEquationsFromItsInitialRatesInAnyAxisOrder) {
 TEST(FreeRigidBodyAgainstJacobi, Rk4BodyRatesConvergeAtFourthOrder) {
   const double e1 = max_rate_error<dynamics::Rk4>(kInertiaA1, kRateA1, 1e-2, 100.0);
   const double e2 = max_rate_error<dynamics::Rk4>(kInertiaA1, kRateA1, 2e-2, 100.0);
-  // RK4 error ~ C h^4: measured max 1.65e-8 at h = 1e-2 over 100 s (final-time 8.6e-9; numerics.md §2.1
-  // reports 9.4e-9 final). Bound 5e-8.
+  // RK4 error ~ C h^4: measured max 1.65e-8 at h = 1e-2 over 100 s (final-time 8.6e-9; the integrator
+  // survey reports 9.4e-9 final). Bound 5e-8.
   EXPECT_LT(e1, 5e-8);
   // Halving h divides the error by 2^4 = 16; measured 16.6. Band [13, 19].
   EXPECT_GT(e2 / e1, 13.0);
@@ -200,7 +203,7 @@ TEST(FreeRigidBodyAgainstJacobi, RotorStrangBodyRatesConvergeAtSecondOrder) {
   const double e1 = max_rate_error<dynamics::RotorStrang>(kInertiaA1, kRateA1, 1e-2, 100.0);
   const double e2 = max_rate_error<dynamics::RotorStrang>(kInertiaA1, kRateA1, 2e-2, 100.0);
   // Strang ~ C h^2 with a phase error growing linearly in t: measured max 7.2e-3 at h = 1e-2 (final 3.7e-3).
-  // numerics.md's "sym+rem" row (6.0e-4 final) splits about the middle moment; RotorStrang's base moment is
+  // the survey's "sym+rem" row (6.0e-4 final) splits about the middle moment; RotorStrang's base moment is
   // I1 = 1 here (remainder 1/I2 - 1/I1 = -0.5), and relabelling the axes to I = (2, 3, 1) reproduces
   // 5.5e-4. Bound 1.5e-2.
   EXPECT_LT(e1, 1.5e-2);
@@ -212,7 +215,7 @@ TEST(FreeRigidBodyAgainstJacobi, RotorStrangBodyRatesConvergeAtSecondOrder) {
 TEST(FreeRigidBodyAgainstJacobi, RotorYoshida4BodyRatesConvergeAtFourthOrder) {
   const double e1 = max_rate_error<dynamics::RotorYoshida4>(kInertiaA1, kRateA1, 1e-2, 100.0);
   const double e2 = max_rate_error<dynamics::RotorYoshida4>(kInertiaA1, kRateA1, 2e-2, 100.0);
-  // Yoshida-4 ~ C h^4: measured max 1.38e-6 at h = 1e-2 (final 7.1e-7; numerics.md's 2.7e-9 is again the
+  // Yoshida-4 ~ C h^4: measured max 1.38e-6 at h = 1e-2 (final 7.1e-7; the survey's 2.7e-9 is again the
   // middle-moment split, which we reproduce at 2.5e-9 with the axes relabelled). Bound 4e-6.
   EXPECT_LT(e1, 4e-6);
   // Order 4: ratio 16; measured 16.0. Band [13, 19].
@@ -224,7 +227,7 @@ TEST(FreeRigidBodyAgainstJacobi, ImplicitMidpointBodyRatesConvergeAtSecondOrder)
   const double e1 = max_rate_error<dynamics::ImplicitMidpoint>(kInertiaA1, kRateA1, 1e-2, 100.0);
   const double e2 = max_rate_error<dynamics::ImplicitMidpoint>(kInertiaA1, kRateA1, 2e-2, 100.0);
   // Implicit midpoint ~ C h^2 (pure phase error: T and |H| are exact): measured max 4.5e-4 at h = 1e-2
-  // (final 2.4e-4; numerics.md §2.1: 2.6e-4 final). Bound 1e-3.
+  // (final 2.4e-4; the survey: 2.6e-4 final). Bound 1e-3.
   EXPECT_LT(e1, 1e-3);
   // Order 2: ratio 4; measured 4.00. Band [3.5, 4.5].
   EXPECT_GT(e2 / e1, 3.5);
@@ -278,13 +281,13 @@ std::pair<Drift, Drift> invariant_drift(double h) {
 TEST(FreeRigidBodyInvariants, ImplicitMidpointKeepsEnergyAndMomentumMagnitudeToRoundOff) {
   const auto [early, late] = invariant_drift<dynamics::ImplicitMidpoint>(1e-2);
   // T and |L|² = |Iω|² are quadratic invariants, kept exactly by the midpoint rule up to the Newton
-  // tolerance (1e-14) and round-off: measured 2.2e-14 and 8e-15 after 1e5 steps (numerics.md §2.3:
+  // tolerance (1e-14) and round-off: measured 2.2e-14 and 8e-15 after 1e5 steps (the survey:
   // 1.5e-13 at 1e6). Bound 1e-12.
   EXPECT_LT(late.energy, 1e-12);
   EXPECT_LT(late.momentum_norm, 1e-12);
   // The world-frame vector L_W = R(q) Iω is cubic, not quadratic: midpoint on q' = ½ q ⊗ ω turns the body
   // by 4 atan(h|ω̄|/4) while it turns m by 2 atan(h|ω̄|/2), a mismatch of h³|ω|³/16 per step. The error is
-  // O(h²) and bounded: measured 1.09e-4 at both 1e4 and 1e5 steps. (numerics.md's midpoint variant updates
+  // O(h²) and bounded: measured 1.09e-4 at both 1e4 and 1e5 steps. (The survey's midpoint variant updates
   // q with the Cayley map of hω̄ and keeps L_W to 5e-14.) Bound 2.5e-4, and no growth beyond 10 %.
   EXPECT_LT(late.momentum_vec, 2.5e-4);
   EXPECT_LT(late.momentum_vec, 1.1 * early.momentum_vec);
@@ -294,11 +297,11 @@ TEST(FreeRigidBodyInvariants, SplittingsKeepMomentumToRoundOffAndBoundEnergyErro
   {
     const auto [early, late] = invariant_drift<dynamics::RotorStrang>(1e-2);
     // Every sub-flow is a rotation of m: |L| and L_W move only by sin/cos round-off, which accumulates
-    // linearly: measured 1.3e-12 after 1e5 steps (numerics.md §2.4: 1e-13..1e-11 after 1e6). Bound 1e-11.
+    // linearly: measured 1.3e-12 after 1e5 steps (the survey: 1e-13..1e-11 after 1e6). Bound 1e-11.
     EXPECT_LT(late.momentum_norm, 1e-11);
     EXPECT_LT(late.momentum_vec, 1e-11);
     // Energy error O(h²), bounded (symplectic, modified Hamiltonian): measured 2.30e-5 at 1e4 and at 1e5
-    // steps (numerics.md sym+rem 4.9e-6 with the middle-moment split). Bound 5e-5, growth under 10 %.
+    // steps (the survey's sym+rem 4.9e-6 with the middle-moment split). Bound 5e-5, growth under 10 %.
     EXPECT_LT(late.energy, 5e-5);
     EXPECT_LT(late.energy, 1.1 * early.energy);
   }
@@ -315,7 +318,7 @@ TEST(FreeRigidBodyInvariants, SplittingsKeepMomentumToRoundOffAndBoundEnergyErro
 
 TEST(FreeRigidBodyInvariants, Rk4EnergyErrorDriftsLinearlyInTime) {
   {
-    // h = 1e-2: measured energy 1.65e-9, |L| 9.2e-10, L_W 7.9e-9 after 1e5 steps (numerics.md §2.3:
+    // h = 1e-2: measured energy 1.65e-9, |L| 9.2e-10, L_W 7.9e-9 after 1e5 steps (the survey:
     // 1.7e-9 energy at 1e5 steps). Bounds 5e-9, 3e-9, 2.5e-8.
     const auto [early, late] = invariant_drift<dynamics::Rk4>(1e-2);
     EXPECT_LT(late.energy, 5e-9);
@@ -324,7 +327,7 @@ TEST(FreeRigidBodyInvariants, Rk4EnergyErrorDriftsLinearlyInTime) {
   }
   {
     // h = 5e-2, where the secular part dominates from the start: measured 2.52e-6 at 1e4 steps and
-    // 2.49e-5 at 1e5 (numerics.md: 2.5e-6 → 2.5e-5). Ten times the steps, ten times the drift: ratio in
+    // 2.49e-5 at 1e5 (the survey: 2.5e-6 → 2.5e-5). Ten times the steps, ten times the drift: ratio in
     // [7, 13]. A bounded error (splitting) gives ~1, a quadratic one 100.
     const auto [early, late] = invariant_drift<dynamics::Rk4>(5e-2);
     EXPECT_GT(late.energy / early.energy, 7.0);
@@ -334,9 +337,9 @@ TEST(FreeRigidBodyInvariants, Rk4EnergyErrorDriftsLinearlyInTime) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// (c) Middle-axis (Dzhanibekov) instability: numerics.md case A2, I = (1, 2, 3), ω0 = (0.01, 10, 0.01),
+// (c) Middle-axis (Dzhanibekov) instability: the survey's case A2, I = (1, 2, 3), ω0 = (0.01, 10, 0.01),
 // 1 - k² = 2e-6, T_s/2 = 2.753 s between flips, 7 flips in 20 s. The flip time depends on ln(1/(1 - k²)),
-// which amplifies any energy or |L| error by ~1/(1 - k²) = 5e5 (numerics.md §2.2): demand ~1e-6, not 1e-12.
+// which amplifies any energy or |L| error by ~1/(1 - k²) = 5e5 (the survey, A2): demand ~1e-6, not 1e-12.
 
 struct Flips {
   int count{0};
@@ -371,7 +374,7 @@ Flips middle_axis_flips(double h, double duration) {
 TEST(MiddleAxisInstability, FlipCountAndFlipPeriodMatchEllipticFormula) {
   const double duration = 20.0;
   const EulerJacobiSolution exact(kInertiaA1, {0.01, 10.0, 0.01});
-  EXPECT_NEAR(exact.complementary_modulus_squared(), 2e-6, 1e-8);  // numerics.md A2: 1 - m = 2e-6
+  EXPECT_NEAR(exact.complementary_modulus_squared(), 2e-6, 1e-8);  // survey case A2: 1 - m = 2e-6
   int expected_count = 0;
   for (double t = exact.next_middle_axis_zero(0.0); t <= duration;
        t = exact.next_middle_axis_zero(t + 1e-9)) {
@@ -386,7 +389,7 @@ TEST(MiddleAxisInstability, FlipCountAndFlipPeriodMatchEllipticFormula) {
     double interval_bound, first_bound;
   };
   const Expect runs[] = {
-      // RK4, h = 1e-3: measured interval error -4e-11 (round-off level; numerics.md §2.2 puts RK4's floor
+      // RK4, h = 1e-3: measured interval error -4e-11 (round-off level; the survey puts RK4's floor
       // near 1e-9). Bound 1e-7; first flip measured 5e-10 s off, bound 1e-6 s.
       {"rk4", middle_axis_flips<dynamics::Rk4>(1e-3, duration), 1e-7, 1e-6},
       // Yoshida-4, h = 1e-3: measured 2.7e-9 (O(h^4): 4.1e-8 at 2e-3). Bound 1e-7; first flip 4e-9 s off,

@@ -431,12 +431,13 @@ TEST(BearingFriction, ReversalWithinAStepKeepsTheExactImpulse) {
   }
 }
 
-// Magnus §11.2b with the drives' Karnopp friction on both gimbal bearings of a GimbalGyro at a 1 ms step (the
-// regularised friction of the model needs 20 µs): the normalised nutation rate amplitude ρ falls linearly,
-// dρ/dt = −(2/π)(r1 + r2 √(A/B))/√(AB) (digest: 0.7478, 0.4958, 0.2440 at 2, 4, 6 s), and the motion stops in
-// finite time near t_stop = ρ0 √(AB) π/(2(r1 + r2 √(A/B))) = 7.94 s, deflected (11.10), at exact rest after.
-// Tolerances: ρ ±3e-3 (within a quarter cycle ρ moves by (r1 + r2 √(A/B))/H = 2.8e-3, as in gimbal_gyro_test);
-// stop within one nutation period 2π√(AB)/H = 0.12 s + 0.03 s of the law (its last cycles are stick-slip).
+// Magnus §11.2.2 with the drives' Karnopp friction on both gimbal bearings of a GimbalGyro at a 1 ms step
+// (the regularised friction of the model needs 20 µs): the normalised nutation rate amplitude ρ falls
+// linearly, dρ/dt = −(2/π)(r1 + r2 √(A/B))/√(AB) (reference F1, docs/models/gimbal-gyro.md: 0.7478, 0.4958,
+// 0.2440 at 2, 4, 6 s), and the motion stops in finite time near t_stop = ρ0 √(AB) π/(2(r1 + r2
+// √(A/B))) = 7.94 s, deflected (11.10), at exact rest after. Tolerances: ρ ±3e-3 (within a quarter cycle ρ
+// moves by (r1 + r2 √(A/B))/H = 2.8e-3, as in gimbal_gyro_test); stop within one nutation period
+// 2π√(AB)/H = 0.12 s + 0.03 s of the law (its last cycles are stick-slip).
 TEST(BearingFriction, CoulombNutationDecaysLinearlyAndStopsAtAOneMillisecondStep) {
   using Gyro = models::GimbalGyro<models::FixedBase>;
   models::GimbalGyroParams gp;

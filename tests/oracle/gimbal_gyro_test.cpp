@@ -1,7 +1,9 @@
 // Oracle tests of the full gimbal gyro (sim/models/gimbal_gyro.hpp) and its precession model against
 // Magnus: the quartic (10.14)-(10.15), kinetic drift (4.67), viscous nutation decay (11.1)-(11.3),
-// Coulomb nutation decay (§11.2b), the torque-step transient and the precession model's error (digest §8),
-// holding torques on a rotating base (10.23), and the numerical-damping test of the foundation issue.
+// Coulomb nutation decay (§11.2.2), the torque-step transient and the precession model's error (§10.1;
+// the bounds are derived in docs/models/gimbal-gyro.md#precession-model-p0), holding torques on a rotating
+// base (10.23), and the numerical-damping test of the foundation issue.
+// Docs: docs/models/gimbal-gyro.md (reference cases P1, G1, F1 and the tolerances).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,12 +54,13 @@ double pendulum_mode_frequency(const Gyro& g, double H, double omega, double per
   return meter.angular_frequency();
 }
 
-// Digest §6.1 reference P1: A = 0.02, B = 0.015, H = 2, Gs = ±0.1.
+// Reference case P1 (Magnus §10.1, (10.15); docs/models/gimbal-gyro.md): A = 0.02, B = 0.015, H = 2,
+// Gs = ±0.1.
 TEST(GimbalGyroOracle, PendulumFrequenciesMatchTheExactQuartic) {
   for (const double Gs : {0.1, -0.1}) {
     const Gyro g(two_axis(0.02, 0.015, Gs), kHorizontalOuterAxis);
     const auto book = oracles::gyro_pendulum_frequencies(0.02, 0.015, 2.0, Gs);
-    // The digest's printed values (6 significant digits) confirm the oracle itself.
+    // The reference values (6 significant digits) confirm the oracle itself.
     EXPECT_NEAR(book.nutation, Gs > 0 ? 115.4195 : 115.5206, 1e-4);
     EXPECT_NEAR(book.precession, Gs > 0 ? 0.05002189 : 0.04997814, 1e-8);
     // The issue asks ≤ 1e-4 relative. Amplitude 1e-6 rad makes the nonlinear frequency shift ~1e-12.
@@ -72,7 +75,7 @@ TEST(GimbalGyroOracle, PendulumFrequenciesMatchTheExactQuartic) {
     // One precession period is 126 s; 3 periods at 1 ms (the controller tick) with the default integrator.
     const double wp_exp = pendulum_mode_frequency<Exp>(g, 2.0, book.precession, 3, 1e-3);
     EXPECT_NEAR(wp_exp / book.precession, 1.0, 1e-6);
-    // Sanity of the separation: ω_N ω_P = |Gs|/sqrt(AB) exactly (digest identity).
+    // Sanity of the separation: ω_N ω_P = |Gs|/sqrt(AB) exactly (the product of the roots of (10.14)).
     EXPECT_NEAR(book.nutation * book.precession, 0.1 / std::sqrt(0.02 * 0.015), 1e-9);
   }
 }
@@ -144,9 +147,10 @@ TEST_P(KineticDrift, MeanAzimuthRateMatchesMagnus4_67) {
   const double measured = (alpha_last - alpha_first) / (t_last - t_first);
   std::printf("H = %g, β0 = %g°, α_A = %g: drift %.5e rad/s, (4.67) %.5e, ratio %.5f, digest sim %.4e\n", c.H,
               c.beta0_deg, c.alpha_A, measured, predicted, measured / predicted, c.digest_sim);
-  // (4.67) is the leading term in α_A; the digest's simulations give ratios 1.001-1.003, growing with α_A
-  // (and the linear crossing location errs by ~(hω)²/8 of a sample, 1e-3 of a period, once at each end
-  // over 400 periods). Tolerance 0.5 % against (4.67) and 0.3 % against the digest's own simulation.
+  // (4.67) is the leading term in α_A; the reference simulations (table G1, docs/models/gimbal-gyro.md)
+  // give ratios 1.001-1.003, growing with α_A (and the linear crossing location errs by ~(hω)²/8 of a
+  // sample, 1e-3 of a period, once at each end over 400 periods). Tolerance 0.5 % against (4.67) and
+  // 0.3 % against the reference simulation.
   EXPECT_NEAR(measured / predicted, 1.0, 5e-3) << "measured " << measured << " predicted " << predicted;
   EXPECT_NEAR(measured / c.digest_sim, 1.0, 3e-3) << "measured " << measured;
 }
@@ -198,8 +202,8 @@ TEST(GimbalGyroOracle, ViscousNutationDecayRateIsAd2PlusBd1Over2AB) {
   }
 }
 
-// §11.2b, digest reference F1: Coulomb friction r1, r2 makes the normalised nutation rate amplitude
-// ρ = |(α' sqrt(A/B), β')| fall linearly, dρ/dt = -(2/π)(r1 + r2 sqrt(A/B))/sqrt(AB).
+// §11.2.2, reference case F1 (docs/models/gimbal-gyro.md): Coulomb friction r1, r2 makes the normalised
+// nutation rate amplitude ρ = |(α' sqrt(A/B), β')| fall linearly, dρ/dt = -(2/π)(r1 + r2 sqrt(A/B))/sqrt(AB).
 TEST(GimbalGyroOracle, CoulombFrictionDecaysTheNutationLinearly) {
   auto p = two_axis(1.0, 0.6, 0.0);
   p.r1 = 0.05;
@@ -221,12 +225,13 @@ TEST(GimbalGyroOracle, CoulombFrictionDecaysTheNutationLinearly) {
     const double rho = std::hypot(x[2] * std::sqrt(A / B), x[3]);
     std::printf("t = %g s: ρ = %.5f, linear law %.5f\n", t_check, rho, 1.0 - slope * t_check);
     // The law is the quarter-cycle average; within a quarter cycle ρ moves by ≈ (r1 + r2 sqrt(A/B))/H
-    // = 2.8e-3, so ±3e-3 about the line. Digest's simulation: 0.7478, 0.4958, 0.2440.
+    // = 2.8e-3, so ±3e-3 about the line. Reference simulation (F1): 0.7478, 0.4958, 0.2440.
     EXPECT_NEAR(rho, 1.0 - slope * t_check, 3e-3) << "t = " << t_check;
   }
 }
 
-// Digest §8 item 2: torque step M on an astatic two-axis gyro, from (10.11) with Gs = 0:
+// Precession-model error, torque step (docs/models/gimbal-gyro.md#precession-model-p0): torque step M on an
+// astatic two-axis gyro, from (10.11) with Gs = 0:
 //   α(t) = (M B/H²)(1 - cos ω_N t),  β(t) = (M/H)(t - sin(ω_N t)/ω_N).
 // The precession model gives α = 0, β = M t/H; its error is bounded by 2MB/H² and M/(H ω_N) = M sqrt(AB)/H².
 TEST(GimbalGyroOracle, TorqueStepTransientAndPrecessionModelErrorBound) {
@@ -261,14 +266,14 @@ TEST(GimbalGyroOracle, TorqueStepTransientAndPrecessionModelErrorBound) {
               max_p0_alpha, 2 * M * B / (H * H), max_p0_beta, M / (H * wN));
   EXPECT_LT(max_err_alpha, 1e-3 * M * B / (H * H)) << max_err_alpha;
   EXPECT_LT(max_err_beta, 1e-5 * M / H * 1.0) << max_err_beta;
-  // The precession model's error reaches, but does not exceed, the digest's bounds.
+  // The precession model's error reaches, but does not exceed, the bounds 2MB/H² and M/(H ω_N).
   EXPECT_LT(max_p0_alpha, 2.0 * M * B / (H * H) * 1.001);
   EXPECT_GT(max_p0_alpha, 1.9 * M * B / (H * H));
   EXPECT_LT(max_p0_beta, M / (H * wN) * 1.001);
   EXPECT_GT(max_p0_beta, 0.9 * M / (H * wN));
 }
 
-// Digest §8 item 1: the precession model's precession frequency errs by O(ε), ε = ω_P/ω_N.
+// The precession model's precession frequency errs by O(ε), ε = ω_P/ω_N (docs/models/gimbal-gyro.md).
 TEST(GimbalGyroOracle, PrecessionModelFrequencyErrorIsOfOrderEpsilon) {
   for (const double H : {2.0, 20.0}) {
     const double Gs = -0.1;
@@ -380,7 +385,8 @@ TEST(GimbalGyroOracle, DefaultIntegratorKeepsA200HzNutationAtTheControllerTick) 
   EXPECT_NEAR(nutation_amplitude_ratio_after_10s(0, 1), 1.0, 1e-3);
 }
 TEST(GimbalGyroOracle, Rk4WithoutSubstepsDampsTheNutationAway) {
-  // numerics.md: RK4 at 1 kHz multiplies a 200 Hz nutation's amplitude by 1.8e-10 per second.
+  // The integrator survey (docs/models/integrators.md): RK4 at 1 kHz multiplies a 200 Hz nutation's
+  // amplitude by 1.8e-10 per second.
   EXPECT_LT(nutation_amplitude_ratio_after_10s(1, 1), 0.5);
 }
 TEST(GimbalGyroOracle, Rk4WithTheValidatedSubstepsKeepsTheNutation) {

@@ -116,7 +116,7 @@ TEST(GyroPendulumCross, PhysicalPendulumMagnusChelnokovAndBodyAgree) {
   EXPECT_LT(turning.magnus_body, 1e-9 * turning.tilt_max + 1e-15);
 }
 
-// Tuned gyro pendulum of the digest (m 5 kg, A 0.02, C 0.025, H 5, s of (12.66)) started on its velocity-error
+// Tuned reference gyro pendulum (m 5 kg, A 0.02, C 0.025, H 5, s of (12.66)) started on its velocity-error
 // equilibrium z = −Hw/(kR); 1 h of manoeuvres; Magnus by the gyroscopic exponential, the 3-D body spinning at
 // H/C by Strang splitting, both at h = 0.01 s (h ω^N = 2.5 rad).
 struct GyroGap {

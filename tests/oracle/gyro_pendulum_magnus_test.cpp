@@ -3,7 +3,8 @@
 // exactly), against the book's closed forms: the roots (12.61), the tuned offset (12.66)-(12.67), the
 // 84.39-min precession period (12.68), the velocity-dependent steady error −Hw/(kR) (12.65); and the
 // physical pendulum (H = 0, RK4) against (12.59)-(12.60).
-// Reference instrument (digest §1.3 / §9.2, constructed): m = 5 kg, A = 0.02, C = 0.025 kg m², H = 5 N m s.
+// Reference instrument (docs/models/gyro-pendulum.md, constructed): m = 5 kg, A = 0.02, C = 0.025 kg m²,
+// H = 5 N m s.
 #include "sim/models/gyro_pendulum_magnus.hpp"
 
 #include <gtest/gtest.h>
@@ -58,12 +59,12 @@ models::GyroPendulumMagnusParams tuned(double s_factor = 1.0) {
 
 TEST(GyroPendulumMagnus, TunedOffsetIsThe1266RootAndNear1267) {
   const auto p = tuned();
-  // Digest §9.2: s = 1.264922e-4 m (quadratic), (12.67) 1.264916e-4 m, k = 6.2044e-3 N m/rad.
+  // Reference instrument: s = 1.264922e-4 m (quadratic), (12.67) 1.264916e-4 m, k = 6.2044e-3 N m/rad.
   EXPECT_NEAR(p.s, 1.264922e-4, 1e-10);
   EXPECT_NEAR(oracles::tuned_gyro_pendulum_offset_approx(p.m, p.H, p.g, p.R), 1.264916e-4, 1e-10);
   EXPECT_NEAR(p.k(), 6.2044e-3, 1e-7);
   const auto roots = oracles::gyro_pendulum_roots(p.A, p.H, p.k());
-  EXPECT_NEAR(roots.nutation, 250.0, 0.05);  // the digest prints 250.0; exact 250.00124 = H/A (1 + Ak/H² …)
+  EXPECT_NEAR(roots.nutation, 250.0, 0.05);  // reference: 250.0; exact 250.00124 = H/A (1 + Ak/H² …)
   EXPECT_NEAR(roots.precession, -1.24088e-3, 1e-8);
   // The tuning condition itself: m s − A/R + H/(R ω^P) = 0 with ω^P ≈ −k/H (12.66).
   EXPECT_NEAR(p.m * p.s - p.A / p.R - p.H * p.H / (p.R * p.k()), 0.0, 1e-15);
@@ -109,10 +110,11 @@ TEST(GyroPendulumMagnus, PrecessionPeriodIs8439MinutesAndNutationIsHOverA) {
 }
 
 TEST(GyroPendulumMagnus, TunedInstrumentSitsOnTheVelocityErrorAfterAManoeuvre) {
-  // Non-rotating Earth, 0.2 m/s² × 50 s northward (digest §1.3): afterwards z = −Hw/(kR) (12.65) plus the
-  // nutation-mode terms of (12.65), amplitude ≤ Σ_corners m s |Δw'|/(A ω^N (ω^N − ω^P)) = 2 × 1.0e-7 rad,
-  // plus the precession-mode residual of tuning with the approximate ω^P of (12.66) (~1e-9). Tolerance
-  // 3e-7 rad over the remaining 3 h. Mistuned (s × 3) the precession mode is excited: residual ~3.4e-3 rad.
+  // Non-rotating Earth, 0.2 m/s² × 50 s northward (the reference manoeuvre): afterwards z = −Hw/(kR) (12.65)
+  // plus the nutation-mode terms of (12.65), amplitude ≤ Σ_corners m s |Δw'|/(A ω^N
+  // (ω^N − ω^P)) = 2 × 1.0e-7 rad, plus the precession-mode residual of tuning with the approximate ω^P of
+  // (12.66) (~1e-9). Tolerance 3e-7 rad over the remaining 3 h. Mistuned (s × 3) the precession mode is
+  // excited: residual ~3.4e-3 rad.
   motion::EarthParams e;
   e.rotation_rate = 0.0;
   const motion::ManoeuvreSegment seg[] = {{600 * kS, 0.0, 0.0}, {50 * kS, 0.0, 0.2}};

@@ -1,10 +1,11 @@
 // Oracle tests of the gyro vertical (sim/models/gyro_vertical.hpp) under the correction laws of the firmware
-// (firmware/control/gyro_vertical_correction.hpp) against Magnus §12.3 (digest gyro-devices.md §1.3):
+// (firmware/control/gyro_vertical_correction.hpp) against Magnus §12.3 (docs/models/gyro-vertical.md):
 //   steady turn: the trajectory (12.46) and the equilibrium z_G (12.47); the resonance at ω = −ω^P (its
 //   peak |z_G|/α_L = sqrt(δ² + ω^P²)/δ, and the unbounded growth ω^P α_L t at δ = 0 (12.48)); the astatic
 //   limits (12.49); the deceleration response (12.41)-(12.42); linear-correction decay with the corrected
-//   pairing α ∝ e^(−f2 t/H), β ∝ e^(−f1 t/H) (digest §11); the Coulomb dead zone (Fig. 12.12) and relay
-//   chatter into the origin (Fig. 12.13); the full (nutation) form against the precession form.
+//   pairing α ∝ e^(−f2 t/H), β ∝ e^(−f1 t/H) (the book prints f1 and f2 swapped); the Coulomb dead zone
+//   (Fig. 12.12) and relay chatter into the origin (Fig. 12.13); the full (nutation) form against the
+//   precession form.
 // The law is evaluated inside the derivative (continuous feedback, the book's setting), except in the relay
 // test, which samples it at 1 kHz like the firmware.
 // Step and tolerance: the precession form's modes are ≤ |δ + i(ω + ω^P)| ≈ 0.05 /s; RK4 at h = 0.05 s has

@@ -1,11 +1,11 @@
 // Oracle tests of the gyrocompass (sim/models/gyrocompass.hpp) with the firmware law
-// (firmware/control/gyrocompass_law.hpp) against Magnus ch. 13 (digest gyro-devices.md §2):
+// (firmware/control/gyrocompass_law.hpp) against Magnus ch. 13 (docs/models/gyrocompass.md):
 //   fixed base — the trajectory of the precession form against the exact solution of the linear system
 //   (13.10), the equilibrium (13.11), the period 2π/ω^K and the decay δ/2 of (13.12) measured from the
 //   extrema; the full form's slow mode against its own linearization and the book's (13.12)/(13.16);
 //   moving base — the speed deviation (13.23) (20 kn north at 50°: 1.97°), zero ballistic deviation of the
 //   Schuler-tuned compass (13.26) during and after a northward acceleration, and the predicted swing
-//   |K Δv sinc(ωT/2)|, K = ω^c/g − 1/(R ω^E cosφ), when mistuned (0.5× and 2×: digest 0.96° and 1.92°);
+//   |K Δv sinc(ωT/2)|, K = ω^c/g − 1/(R ω^E cosφ), when mistuned (0.5× and 2×: reference 0.96° and 1.92°);
 //   rolling error (13.38) on an intercardinal course, and none on a cardinal one.
 // The law is evaluated inside the derivative (continuous, the book's setting).
 // Steps and tolerances: the precession modes are ≈ 1.2e-3 /s; RK4 at h = 1 s errs by ~(hλ)^5/120 ≈ 2e-17
@@ -125,7 +125,7 @@ TEST(GyrocompassOracle, FixedBaseTrajectoryEquilibriumPeriodAndDecay13_10_13_12)
   // (13.11) after 40000 s: the transient is e^(−δ/2 · 4e4) = e^-14.9 ≈ 3e-7 of 5°: use Aitken on extrema.
   ASSERT_GE(ext.count(), 6);
   EXPECT_NEAR(ext.equilibrium(0), th.alpha0(), 1e-7 * std::fabs(th.alpha0()) + 1e-9);
-  EXPECT_NEAR(th.alpha0() * 180 / kPi, -1.55, 0.005);  // digest §2.2 [constructed]
+  EXPECT_NEAR(th.alpha0() * 180 / kPi, -1.55, 0.005);  // reference compass [constructed], Magnus §13.2
   EXPECT_NEAR(th.beta0(), 1.698e-3, 1e-6);
   EXPECT_NEAR(x[1], th.beta0(), 1e-6 * th.beta0());
   // (13.12): period and decay.
@@ -285,7 +285,7 @@ TEST(GyrocompassOracle, NoBallisticDeviationWhenSchulerTuned13_26) {
     EXPECT_NEAR(swing / pred, 1.0, 5e-4);
   }
   ballistic_swing(0.5, &pred);
-  EXPECT_NEAR(pred * 180 / kPi, 0.96, 0.01);  // digest §2.3
+  EXPECT_NEAR(pred * 180 / kPi, 0.96, 0.01);  // reference case, Magnus §13.3.2
   ballistic_swing(2.0, &pred);
   EXPECT_NEAR(pred * 180 / kPi, 1.92, 0.01);
 }
@@ -333,8 +333,9 @@ TEST(GyrocompassOracle, RollingErrorOnIntercardinalCourses13_38) {
   // ω^E cosφ/(2ω_s) ≈ 4e-5, and the transient left after 20000 s (e^(−ζ ω_n t) = e^-17): tolerance 1e-4.
   EXPECT_NEAR((mean45 - a0) / exact, 1.0, 1e-4);
   EXPECT_NEAR(book / exact, 1.0, 1e-2);  // (13.38) linearizes sin 2(α + ψ): O(α²) ≈ 1e-3 here
-  // The digest's [constructed] 0.0346 rad is the ω_γ << ω_s approximation (13.39): (ω^c/(ω^E cosφ)) (b0/g)²
-  // (ω_γ/ω_s)² sin2ψ/4; (13.38) has ω_γ²/(ω_s² − ω_γ²) instead of (ω_γ/ω_s)², 1/0.96 more at ω_γ/ω_s = 0.2.
+  // The reference [constructed] 0.0346 rad (docs/models/gyrocompass.md) is the ω_γ << ω_s approximation
+  // (13.39): (ω^c/(ω^E cosφ)) (b0/g)² (ω_γ/ω_s)² sin2ψ/4; (13.38) has ω_γ²/(ω_s² − ω_γ²) instead of
+  // (ω_γ/ω_s)², 1/0.96 more at ω_γ/ω_s = 0.2.
   const double wh = kWe * std::cos(kLat), b0g = (10.0 * 10.0 * kPi / 180.0 * std::pow(2 * kPi / 10.0, 2)) / kG;
   const double approx_13_39 = tuned_wc() / wh * b0g * b0g * 0.04 / 4.0;
   EXPECT_NEAR(approx_13_39, 0.0346, 5e-5);

@@ -1,13 +1,15 @@
-// Heavy symmetric top (Lagrange case) against its closed forms, Magnus §3.3.2 / digest §3.3.a.
+// Heavy symmetric top (Lagrange case) against its closed forms, Magnus §3.3.2.
+// Docs: docs/models/rigid-bodies.md (reference cases L1-L3, the precession-theory error table).
 //
 // Oracle: sim/oracles/lagrange_top.hpp. Plant: sim/models/heavy_symmetric_top.hpp (world Z up, centre of
 // mass at s·e3). Integrators: Rk4, RotorStrang, RotorYoshida4, ImplicitMidpoint (sim/dynamics).
-// Reference cases (digest §10.2), all with A = 1, C = 0.5, Gs = 1:
+// Reference cases (docs/models/rigid-bodies.md), all with A = 1, C = 0.5, Gs = 1:
 //   L1  released from rest-spin at θ0 = 30°, ω0 = 10: u1 = 0.842858, T_S = 1.35176, mean ψ' = 0.207242;
 //   L2  regular precession at θ0 = 30°, ψ'0 = 0.207454 or 5.566048: θ constant;
 //   L3  sleeping top, a = 0.8 / 0.95 / 1.05 / 1.2: lowest cos θ = 0.6 / 0.9 / 1 / 1.
 // Tolerances: each bound is ~2-3x the error measured with these exact steps (Release, GCC 12, x86-64),
-// stated next to it with the method's order; numerics.md §3 gives the same ordering of the methods
+// stated next to it with the method's order; the integrator survey (docs/models/integrators.md, heavy
+// top) gives the same ordering of the methods
 // (Yoshida-4 < RK4 < Strang on accuracy at equal step, midpoint exact on the quadratic invariants).
 #include "sim/models/heavy_symmetric_top.hpp"
 
@@ -75,12 +77,13 @@ TEST(LagrangeTopOracle, ReproducesDigestCaseL1RootsPeriodAndMeanPrecession) {
   const double u0 = std::cos(kTheta0);
   EXPECT_DOUBLE_EQ(lt::spin_parameter(kOracleParams, kOmega0), 6.25);
   const lt::TurningPoints r = lt::rest_spin_turning_points(kOracleParams, u0, kOmega0);
-  // Digest L1 prints 6 significant digits: tolerance = half a unit in the last digit.
+  // Reference L1 is given to 6 significant digits: tolerance = half a unit in the last digit.
   EXPECT_NEAR(r.u1, 0.842858, 5e-7);
   EXPECT_EQ(r.u2, u0);
   EXPECT_NEAR(lt::nutation_period(kOracleParams, r), 1.35176, 5e-6);
   EXPECT_NEAR(lt::rest_spin_mean_precession_rate(kOracleParams, u0, kOmega0), 0.207242, 5e-7);
-  // The other rows of the digest's table (§3.3.a), same precision rule: a wide range of k and a.
+  // The other rows of the reference table (docs/models/rigid-bodies.md), same precision rule: a wide range
+  // of k and a.
   struct Row {
     double omega0, period, mean_precession, half_unit_period, half_unit_precession;
   };
@@ -93,8 +96,8 @@ TEST(LagrangeTopOracle, ReproducesDigestCaseL1RootsPeriodAndMeanPrecession) {
                 row.half_unit_precession)
         << row.omega0;
   }
-  // The ω0 = 200 row prints mean ψ' = 0.0100014; the quadrature gives 0.01000087, which is what the digest's
-  // own fit (Gs/(Cω0))(1 + cos θ0/(4a)) = 0.01000087 predicts (the printed value is off by 5e-7).
+  // The ω0 = 200 row gives mean ψ' = 0.0100014; the quadrature gives 0.01000087, which is what the table's
+  // own fit (Gs/(Cω0))(1 + cos θ0/(4a)) = 0.01000087 predicts (the tabulated value is off by 5e-7).
   EXPECT_NEAR(lt::rest_spin_mean_precession_rate(kOracleParams, u0, 200.0),
               0.01 * (1.0 + u0 / (4.0 * lt::spin_parameter(kOracleParams, 200.0))), 1e-9);
 }
@@ -129,7 +132,7 @@ TEST(LagrangeTopOracle, CosTiltSolutionSatisfiesTheCubicAndStartsAtRest) {
 TEST(LagrangeTopOracle, RegularPrecessionRootsMatchDigestCaseL2) {
   const auto roots = lt::regular_precession_rates(kOracleParams, kTheta0, kOmega0);
   ASSERT_TRUE(roots.has_value());
-  EXPECT_NEAR(roots->slow, 0.207454, 5e-7);  // digest L2, 6 digits
+  EXPECT_NEAR(roots->slow, 0.207454, 5e-7);  // reference L2, 6 digits
   EXPECT_NEAR(roots->fast, 5.566048, 5e-7);
   // (3.57): A cos θ0 ψ'² - Cω0 ψ' + Gs = 0 at both roots; terms are O(10): round-off 1e-14.
   for (double p : {roots->slow, roots->fast}) {
@@ -171,9 +174,10 @@ TEST(LagrangeTopOracle, SleepingTopFallsToTwoAMinusOneBelowThresholdAndStaysAbov
     EXPECT_NEAR(r.u2, 1.0, 1e-12) << a;
     EXPECT_NEAR(r.u3, std::max(1.0, 2.0 * a - 1.0), 1e-12) << a;
   }
-  // Digest (3.69) roots to first order in the kick energy ε = ½Aω_t² (A = Gs = 1): 1 + ε/(1 - a) and
-  // 2a - 1 - aε/(1 - a). The exact quadratic differs at second order, ~ε²/|1 - a|³ (measured 1.05e-9 at
-  // |1 - a| = 0.05, 1.3e-11 at 0.2): bound 4ε²/|1 - a|³. The first-order shift itself is 5e-7/|1 - a|.
+  // The (3.69) roots (lost in the book's scan; docs/models/rigid-bodies.md) to first order in the kick
+  // energy ε = ½Aω_t² (A = Gs = 1): 1 + ε/(1 - a) and 2a - 1 - aε/(1 - a). The exact quadratic differs at
+  // second order, ~ε²/|1 - a|³ (measured 1.05e-9 at |1 - a| = 0.05, 1.3e-11 at 0.2): bound 4ε²/|1 - a|³. The
+  // first-order shift itself is 5e-7/|1 - a|.
   const double wt = 1e-3, eps = 0.5 * wt * wt;
   for (double a : {0.8, 0.95, 1.05, 1.2}) {
     const lt::TurningPoints r = lt::kicked_sleeping_top_turning_points(kOracleParams, 4.0 * std::sqrt(a), wt);
@@ -238,7 +242,7 @@ constexpr const char* kMethodName[] = {"rk4", "strang", "yoshida4", "implicit-mi
 
 TEST(HeavySymmetricTopL1, CosTiltStaysBetweenTurningPointsAndFollowsEllipticSolution) {
   const double u0 = std::cos(kTheta0);
-  const double u1 = lt::rest_spin_turning_points(kOracleParams, u0, kOmega0).u1;  // 0.842858 (digest)
+  const double u1 = lt::rest_spin_turning_points(kOracleParams, u0, kOmega0).u1;  // 0.842858 (L1)
   // Max |u(t) - u_exact(t)| over 20 periods, measured: RK4 8.0e-10 (h^4), Strang 5.8e-7 (h^2), Yoshida-4
   // 2.2e-11 (h^4), implicit midpoint 1.5e-5 (h^2: Cayley compression of the 10 rad/s spin and the 5 rad/s
   // nutation, (hω)²/12 ≈ 1e-5 of phase). Bounds ~2.5x: 2e-9, 1.5e-6, 6e-11, 4e-5.
@@ -254,7 +258,7 @@ TEST(HeavySymmetricTopL1, CosTiltStaysBetweenTurningPointsAndFollowsEllipticSolu
 }
 
 TEST(HeavySymmetricTopL1, NutationPeriodMatchesEllipticQuadrature) {
-  // T_S = K(k)·√(8A/(Gs(u3 - u1))) = 1.35176 s (digest L1), from upward crossings of the mid-level
+  // T_S = K(k)·√(8A/(Gs(u3 - u1))) = 1.35176 s (reference L1), from upward crossings of the mid-level
   // (u1 + u2)/2 over 19 whole periods, cubic-Hermite crossing times with u' = Γ1ω2 - Γ2ω1.
   const lt::TurningPoints r = lt::rest_spin_turning_points(kOracleParams, std::cos(kTheta0), kOmega0);
   const double exact = lt::nutation_period(kOracleParams, r);
@@ -269,18 +273,19 @@ TEST(HeavySymmetricTopL1, NutationPeriodMatchesEllipticQuadrature) {
 
 TEST(HeavySymmetricTopL1, MeanPrecessionOverWholeNutationPeriodsMatchesExactMean) {
   const double exact = lt::rest_spin_mean_precession_rate(kOracleParams, std::cos(kTheta0), kOmega0);
-  EXPECT_NEAR(exact, 0.207242, 5e-7);  // digest L1 (its ODE run: 0.207242 over 21 whole periods)
+  EXPECT_NEAR(exact, 0.207242, 5e-7);  // reference L1 (its ODE run: 0.207242 over 21 whole periods)
   // ψ(20 T_S)/(20 T_S): both ends are cusps (ψ' = 0), so a period error δ moves the window end where ψ'
   // grows like t²: the window costs O(δ³). Relative error, measured: RK4 -1.9e-8 (h^4), Strang -8.6e-7
   // (h^2), Yoshida-4 1.3e-10 (h^4), midpoint -2.8e-4 (h^2: -7.0e-5 at h/2). The midpoint's is 30x its period
   // error because its attitude update turns q by 4 atan(h|ω|/4) while the momentum turns by 2 atan(h|ω|/2):
-  // the 10 rad/s spin leaks into the azimuth (numerics.md §3.1 also sees midpoint bias the slow
+  // the 10 rad/s spin leaks into the azimuth (the integrator survey also sees midpoint bias the slow
   // precession). Bounds ~2.5x.
   const double bound[] = {5e-8, 2.2e-6, 3.5e-10, 7e-4};
   for (int m : {kRk4, kStrang, kYoshida4, kMidpoint}) {
     EXPECT_NEAR(l1_run(m).mean_precession / exact, 1.0, bound[m]) << kMethodName[m];
   }
-  // The digest's warning, reproduced: stopping 3/4 of a period early (19.25 periods) biases the mean by
+  // The known pitfall, reproduced (docs/models/rigid-bodies.md): stopping 3/4 of a period early
+  // (19.25 periods) biases the mean by
   // ~1/(2π·19.25) = 0.8 % (ψ - ψ̄t swings by ±ψ̄T_S/(2π) within a period; half-periods are unbiased by
   // symmetry). Measured 0.80 %; at least 0.1 %, so even 3x the worst (midpoint) error above would show.
   EXPECT_GT(std::abs(l1_run(kRk4).mean_precession_partial / exact - 1.0), 1e-3);
@@ -325,7 +330,7 @@ TEST(HeavySymmetricTopL2, RegularPrecessionKeepsTiltConstant) {
 TEST(HeavySymmetricTopL2, TenPercentOffTheSlowRootNutatesByTheCubicsAmplitude) {
   // The control for the test above: ψ'0 = 1.1 × 0.207454 is not a relative equilibrium. The general
   // θ'0 = 0 roots give the nutation band [u0, u2] (the top rises: ψ'0 above the slow root), Δθ = 0.256°
-  // (digest: "a 10% error in ψ'0 produces a 0.26° nutation").
+  // (reference L2: "a 10% error in ψ'0 produces a 0.26° nutation").
   const double u0 = std::cos(kTheta0),
                psi_dot0 = 1.1 * lt::regular_precession_rates(kOracleParams, kTheta0, kOmega0)->slow;
   const lt::TurningPoints r = lt::tilted_start_turning_points(kOracleParams, u0, kOmega0, psi_dot0);
@@ -405,7 +410,7 @@ TEST(HeavySymmetricTopL3, SleepingTopBelowThresholdFallsToTwoAMinusOne) {
     for (int m : {kRk4, kStrang, kYoshida4, kMidpoint}) {
       const Dip dip = sleeping_top_dip_for(m, a, 1.5 * half_period);
       EXPECT_NEAR(dip.min_cos_tilt, r.u1, u_bound[m]) << kMethodName[m] << " a = " << a;
-      // Digest table (sleeping.py): 0.60000 / 0.89999 for 2a - 1 = 0.6 / 0.9: the kick's shift (≤ 9.5e-6)
+      // Reference table L3: 0.60000 / 0.89999 for 2a - 1 = 0.6 / 0.9: the kick's shift (≤ 9.5e-6)
       // plus the integrator's error stay under 5e-5.
       EXPECT_NEAR(dip.min_cos_tilt, lt::sleeping_top_fall_cos_tilt(a), 5e-5)
           << kMethodName[m] << " a = " << a;
@@ -418,7 +423,8 @@ TEST(HeavySymmetricTopL3, SleepingTopBelowThresholdFallsToTwoAMinusOne) {
 
 TEST(HeavySymmetricTopL3, SleepingTopAboveThresholdStaysUprightAfterKick) {
   // The kick only opens a small band [u1, 1]: 1 - u1 = ε/(Gs(a - 1)) = 1e-5 / 2.5e-6 for a = 1.05 / 1.2
-  // (digest: 0.99999 / 1.00000). Over two nutation periods (T_S = 14.0 s / 7.0 s) the lowest u matches it.
+  // (reference L3: 0.99999 / 1.00000). Over two nutation periods (T_S = 14.0 s / 7.0 s) the lowest u
+  // matches it.
   // Relative error of 1 - min u, measured (a = 1.05 / 1.2): RK4 3.6e-7 / 1.3e-7, Strang 2.0e-4 / 7.5e-5,
   // Yoshida-4 7.5e-9 / 7.6e-10, midpoint 3.4e-4 / 1.1e-4 (2.5 ms). Bounds ~2.5x. (A top below threshold
   // would leave the band entirely: 1 - min u = 2(1 - a).)
@@ -469,7 +475,7 @@ TEST(HeavySymmetricTopInvariants, EnergyVerticalMomentumAndSpinPerIntegrator) {
   // touch m3 (up to rounding in ω ↔ m). Bound 1e-14 relative; measured 0 for all four.
   {
     const auto [early, late] = top_drift<dynamics::Rk4>(h, steps);
-    // RK4: energy and vertical momentum drift linearly (numerics.md §3.4): measured 5.3e-7 / 5.0e-7 at
+    // RK4: energy and vertical momentum drift linearly (the integrator survey): measured 5.3e-7 / 5.0e-7 at
     // 1e4 steps, 5.3e-6 / 5.0e-6 at 1e5 (energy / Gs, vertical momentum / |Iω|). Ratio 10 for 10x the
     // steps: band [7, 13].
     EXPECT_LT(late.energy, 1.3e-5);
@@ -482,7 +488,7 @@ TEST(HeavySymmetricTopInvariants, EnergyVerticalMomentumAndSpinPerIntegrator) {
     const auto [early, late] = top_drift<dynamics::RotorStrang>(h, steps);
     // Strang: energy O(h²) and bounded (measured 4.3e-6 at 1e4 and at 1e5 steps); the vertical momentum
     // is exact up to rotation round-off (kicks are horizontal in the world, rotations keep |m|): 3.6e-14 at
-    // 1e4, 2.8e-13 at 1e5 (numerics.md §3.4: 3e-14 → 3e-12 over 1e6). Bounds 1.1e-5 (+10 %), 1e-11.
+    // 1e4, 2.8e-13 at 1e5 (the survey: 3e-14 → 3e-12 over 1e6). Bounds 1.1e-5 (+10 %), 1e-11.
     EXPECT_LT(late.energy, 1.1e-5);
     EXPECT_LT(late.energy, 1.1 * early.energy);
     EXPECT_LT(late.vertical, 1e-11);
@@ -501,7 +507,7 @@ TEST(HeavySymmetricTopInvariants, EnergyVerticalMomentumAndSpinPerIntegrator) {
     // Midpoint: the energy ½ω·Iω + Gs(1 - 2(x² + y²)) is quadratic in the state, so it is exact to the
     // Newton tolerance and round-off (measured 1.1e-14 at 1e4, 1.2e-13 at 1e5 steps). The vertical
     // momentum Iω·Γ(q) is cubic and is not: an O(h²), bounded error (1.5e-5 at both 1e4 and 1e5 steps;
-    // numerics.md's midpoint with a Cayley attitude update keeps it to 5e-13). Bounds 1e-12, 4e-5 (+10 %).
+    // the survey's midpoint with a Cayley attitude update keeps it to 5e-13). Bounds 1e-12, 4e-5 (+10 %).
     EXPECT_LT(late.energy, 1e-12);
     EXPECT_LT(late.vertical, 4e-5);
     EXPECT_LT(late.vertical, 1.1 * early.vertical);

@@ -1,6 +1,6 @@
 // Oracle tests of the inertial platforms (sim/models/inertial_platform.hpp) with the firmware Schuler loop
 // (firmware/control/schuler_loop.hpp, sampled at its control period with one tick of latency, as in the
-// closed loop) against Magnus ch. 16 (digest gyro-devices.md §5):
+// closed loop) against Magnus ch. 16 (docs/models/inertial-platform.md):
 //   servo offsets (16.2) and the stability bound k < Hd/B (16.5);
 //   Schuler period 84.4 min of the platform loop (16.38)/(16.44) and the tuned error curves for an initial
 //   tilt (16.46)-(16.47) — velocity amplitude α0 sqrt(gR), position error up to 2Rα0 (book: 2.2 km for
@@ -168,7 +168,7 @@ TEST(InertialPlatformOracle, SchulerPeriodAndErrorCurvesForAnInitialTilt16_38_16
   EXPECT_NEAR(r.tilt_max / r.e0, 1.0, 1e-3);
   EXPECT_NEAR(r.v_err_max / (r.e0 * std::sqrt(kG * kR)), 1.0, 1e-3);
   EXPECT_NEAR(r.pos_err_max / (2 * kR * r.e0), 1.0, 1e-3);
-  EXPECT_NEAR(2 * kR * r.e0, 2224.0, 1.0);  // digest §5.4: 2.224 km (book 2.2 km)
+  EXPECT_NEAR(2 * kR * r.e0, 2224.0, 1.0);  // 2Rα0 recomputed: 2.224 km (book, §16.4.3: 2.2 km)
   // A loop tuned to 4R swings with twice the period (2π sqrt(R_loop/g)).
   SingleAxisRun m;
   m.e0 = r.e0;

@@ -1,5 +1,5 @@
-// Oracle tests of the gyro-stabilized monorail car (sim/models/monorail.hpp) against Magnus §14.1 (digest
-// gyro-devices.md §3.1): the gain window d(c + Aω_P²)/H < k < d(c + Aω_N²)/H of the Hurwitz conditions
+// Oracle tests of the gyro-stabilized monorail car (sim/models/monorail.hpp) against Magnus §14.1
+// (docs/models/monorail.md): the gain window d(c + Aω_P²)/H < k < d(c + Aω_N²)/H of the Hurwitz conditions
 // (14.5), with growth rates and frequencies measured from the simulated car and compared with the roots of
 // the characteristic equation (14.3); curve running (14.6)-(14.7); and energy conservation of the
 // large-angle terms.
@@ -66,7 +66,7 @@ Eigen::Matrix4d state_matrix(const MonorailParams& p, double Omega3) {
   return M;
 }
 
-// Undamped frequencies ω_P < ω_N: roots of AB Ω⁴ − (H² − qA − cB) Ω² + cq = 0 (digest §3.1).
+// Undamped frequencies ω_P < ω_N: roots of AB Ω⁴ − (H² − qA − cB) Ω² + cq = 0 (docs/models/monorail.md).
 void undamped_frequencies(const MonorailParams& p, double& wP, double& wN) {
   const double b = p.H * p.H - p.q * p.A - p.c * p.B, r = std::sqrt(b * b - 4.0 * p.A * p.B * p.c * p.q);
   wP = std::sqrt((b - r) / (2.0 * p.A * p.B));
@@ -127,15 +127,16 @@ TEST(MonorailOracle, GainWindowAndRootsMatchTheDigest) {
   double wP = 0, wN = 0;
   undamped_frequencies(p, wP, wN);
   const double k_lo = p.d * (p.c + p.A * wP * wP) / p.H, k_hi = p.d * (p.c + p.A * wN * wN) / p.H;
-  // Digest §3.1 (3-4 printed digits): ω_P = 0.864, ω_N = 9.447, window 1112 < k < 14388.
+  // Reference car (docs/models/monorail.md, 3-4 digits): ω_P = 0.864, ω_N = 9.447, window 1112 < k < 14388.
   EXPECT_NEAR(wP, 0.864, 5e-4);
   EXPECT_NEAR(wN, 9.447, 5e-4);
   EXPECT_NEAR(k_lo, 1112.0, 0.5);
   EXPECT_NEAR(k_hi, 14388.0, 0.5);
   // (14.4): H > sqrt(qA) + sqrt(cB) (undamped car stabilizable), and the window is where (14.5) holds.
   EXPECT_GT(p.H, std::sqrt(p.q * p.A) + std::sqrt(p.c * p.B));
-  // The digest's roots (max Re λ) at 0.9, 1.01 × k_lo, mid-window, 0.99, 1.1 × k_hi; it prints the gains
-  // rounded (1001, 1123, 7750, 14244, 15827) and the roots to 2-3 digits: within half a unit of the last.
+  // The reference roots (max Re λ) at 0.9, 1.01 × k_lo, mid-window, 0.99, 1.1 × k_hi; the reference gives
+  // the gains rounded (1001, 1123, 7750, 14244, 15827) and the roots to 2-3 digits: within half a unit of
+  // the last.
   struct Case {
     double k, max_re, half_unit;
   };

@@ -1,6 +1,6 @@
 // Oracle tests of the power gyro stabilizer — plant sim/models/power_stabilizer.hpp, control law
-// firmware/control/power_stabilizer_loops.hpp — against Magnus §14.3 (digest gyro-devices.md §3.3,
-// gyro-fundamentals.md App. A.3 and the reference cases S1-S3 of §10.2: A = 1, B = 0.8, H = 50,
+// firmware/control/power_stabilizer_loops.hpp — against Magnus §14.3, (14.19)-(14.40), and the reference
+// cases S1-S3 of docs/models/power-stabilizer.md: A = 1, B = 0.8, H = 50,
 // k1 = k2 = 20; d = 0 ⇒ nutation Re λ = +0.40; d1 = d2 = 0.5 ⇒ −0.1625; k = 500 ⇒ +8.95).
 //
 // Closed loop: the firmware law is evaluated continuously, inside the derivative (ClosedLoop below maps the
@@ -240,18 +240,18 @@ ModeEstimate simulate_torque_loop(const PowerStabilizerConfig& c, Law law, doubl
 
 // ---- (14.23): reference cases S1-S3 ---------------------------------------------------------------------
 
-// The oracle itself: the companion-matrix roots reproduce the digest's printed S1-S3 values.
+// The oracle itself: the companion-matrix roots reproduce the reference S1-S3 values.
 TEST(PowerStabilizerOracle, CharacteristicRootsReproduceDigestCasesS1S2S3) {
   const cd s1 = nutation_root(roots_14_23(1, 0.8, 50, 0, 0, 20, 20));
   const cd s2 = nutation_root(roots_14_23(1, 0.8, 50, 0.5, 0.5, 20, 20));
   const cd s3 = nutation_root(roots_14_23(1, 0.8, 50, 0.5, 0.5, 500, 500));
   std::printf("nutation roots: S1 %.6f%+.4fi, S2 %.6f%+.4fi, S3 %.5f%+.4fi\n", s1.real(), s1.imag(),
               s2.real(), s2.imag(), s3.real(), s3.imag());
-  // The digest prints 2-4 significant digits: +0.40, −0.1625, +8.95.
+  // The reference values are given to 2-4 significant digits: +0.40, −0.1625, +8.95.
   EXPECT_NEAR(s1.real(), 0.40, 5e-4);
   EXPECT_NEAR(s2.real(), -0.1625, 5e-5);
   EXPECT_NEAR(s3.real(), 8.95, 5e-3);
-  // S1's precession roots are −0.40 (digest), where precession theory (14.24) says −k/H = −0.4 and stable.
+  // S1's precession roots are −0.40 (reference), where precession theory (14.24) says −k/H = −0.4 and stable.
   const Eigen::Vector4cd r1 = roots_14_23(1, 0.8, 50, 0, 0, 20, 20);
   for (int i = 0; i < 4; ++i) {
     if (std::abs(r1[i].imag()) < 1.0) {

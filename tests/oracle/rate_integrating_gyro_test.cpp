@@ -1,5 +1,5 @@
 // Oracle tests of the single-degree-of-freedom gyro (sim/sensors/rate_integrating_gyro.hpp) against Magnus
-// ch. 15 (digest gyro-devices.md §4.1-§4.3):
+// ch. 15, §15.1-15.3 (docs/models/rate-gyros.md):
 //   P-gyro: steady output (15.3) incl. the B Ω2' and H Ω3 terms, (15.4) scale factor H/c2, the free motion
 //   of (15.2) (natural frequency sqrt(c2/B) and damping ratio d2/(2 sqrt(B c2))), the −3 dB bandwidth of the
 //   second-order response; the turn indicator's under-reading by cosφ (15.6);

@@ -91,7 +91,8 @@ TEST(SchulerPendulum, TunedPendulumKeepsTheVerticalUnderArbitraryManoeuvres) {
   // Chelnokov (2.5): k = I1 = I2 = l m R, r = r0 = 0, started on the vertical with the trihedron's rate.
   // The exact solution is tilt ≡ 0 for any path; what remains is RK4's error on the forcing: local error
   // ~ (h r)^5 relative on the turn-rate-borne accelerations (h = 0.5 s, r ≤ 0.05 rad/s: 1e-8); measured
-  // 7e-12 rad over 3 h (the digest's run: 3e-8, §6.10 item 2). Tolerance 1e-6 rad (the issue's); a step
+  // 7e-12 rad over 3 h (an independent reference run: 3e-8, docs/models/gyro-pendulum.md). Tolerance
+  // 1e-6 rad (the requirement); a step
   // that straddles a corner with the right-limit accelerations fails it (1e-4 rad: EarthReference::begin_step).
   // Shapes I3 = 0.3 l m R and a sphere (I3 = l m R), gravity gradient on.
   const Vehicle veh = manoeuvres(7.292115e-5, true);
@@ -162,7 +163,7 @@ TEST(SchulerPendulum, PeriodDependsOnShapeAsMagnus1260) {
   RecordProperty("sphere_period_min", num(T_sphere / 60.0));
   EXPECT_NEAR(T_rod / oracles::tuned_pendulum_period(A, 0.0, g, R), 1.0, 1e-5);
   EXPECT_NEAR(T_sphere / oracles::tuned_pendulum_period(A, A, g, R), 1.0, 1e-5);
-  EXPECT_NEAR(T_rod / 60.0, 42.2, 0.05);    // the book's printed values (digest §9.1)
+  EXPECT_NEAR(T_rod / 60.0, 42.2, 0.05);    // the book's printed values (Magnus §12.3.3, after (12.60))
   EXPECT_NEAR(T_sphere / 60.0, 84.4, 0.05);
   // 4A = 3C: k = 0, the tilt grows as 1e-6 t (no restoring, no overturning) — to first order in the tilt;
   // the remaining torque is cubic, (Ag/R) θ³/2, a relative deficit (g/2R) a² t⁴/20 = 2.4e-5 after 5000 s.

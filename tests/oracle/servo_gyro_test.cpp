@@ -1,5 +1,5 @@
 // Oracle tests of the servo gyro as a vibrator drive (sim/models/servo_gyro.hpp) against Magnus §14.4
-// (digest gyro-devices.md §3.4): the output torque (14.42), the motor torque (14.43) and the torque gain
+// (docs/models/servo-gyro.md): the output torque (14.42), the motor torque (14.43) and the torque gain
 // 1/α_A (14.44), with α_A = 5.7° giving ×10; the general gain off resonance [derived in the header]; the
 // power balance; energy conservation in the torque-driven mode.
 //

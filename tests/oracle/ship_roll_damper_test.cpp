@@ -1,5 +1,5 @@
 // Oracle tests of the gyroscopic ship roll damper (sim/models/ship_roll_damper.hpp) against Magnus §14.2
-// (digest gyro-devices.md §3.2): steady roll and precession amplitudes (14.11), the invariant points
+// (docs/models/ship-roll-damper.md): steady roll and precession amplitudes (14.11), the invariant points
 // (14.17)-(14.18), the minimax precession brake, the locked ship (14.15); and of the model's own
 // additions: energy conservation with the large-angle terms and the end stops, the stop's restitution.
 //
@@ -146,9 +146,9 @@ Steady steady_response(const ShipRollDamperParams& p, double E0, double w, doubl
   return s;
 }
 
-// The digest's constructed ship (§3.2): 2000 t, GM 0.6 m, radius of gyration 4 m.
+// The constructed reference ship (docs/models/ship-roll-damper.md): 2000 t, GM 0.6 m, radius of gyration 4 m.
 ShipRollDamperParams digest_ship(double d1, double d2) {
-  ShipRollDamperParams p;  // A, c, B, q, H default to the digest's values
+  ShipRollDamperParams p;  // A, c, B, q, H default to the reference ship's values
   p.d1 = d1;
   p.d2 = d2;
   return p;
@@ -232,7 +232,7 @@ TEST(ShipRollDamperOracle, ResponseCurvesForAllD2PassThroughTheInvariantPoints14
   const ShipRollDamperParams p0 = digest_ship(0.0, 0.0);
   double w2 = 0, w3 = 0;
   invariant_frequencies(p0, w2, w3);
-  // The digest's printed values (5-6 significant digits) confirm the oracle itself.
+  // The reference values (5-6 significant digits) confirm the oracle itself.
   EXPECT_NEAR(w2, 0.14780, 5e-6);
   EXPECT_NEAR(w3, 1.23107, 5e-6);
   EXPECT_NEAR(1.0 / std::abs(p0.c - p0.A * w2 * w2), 9.031e-8, 5e-12);
@@ -279,11 +279,11 @@ TEST(ShipRollDamperOracle, MinimaxBrakePutsTheRollPeakOnTheHighestInvariantPoint
   invariant_frequencies(p, w2, w3);
   const double ordinate = 1.0 / std::abs(p.c - p.A * w2 * w2), stat = 1.0 / p.c;
   p.d2 = minimax_d2(p, w2);
-  // The digest gives d2_opt ≈ 4.53e4 N m s/rad (3 digits): within half a unit of the last digit.
+  // The reference gives d2_opt ≈ 4.53e4 N m s/rad (3 digits): within half a unit of the last digit.
   EXPECT_NEAR(p.d2, 4.53e4, 50.0) << p.d2;
   std::printf("minimax d2 = %.1f N m s/rad\n", p.d2);
   // (14.11) at d2_opt: the global maximum over ω is the invariant ordinate, at ω_II (grid+golden search;
-  // the search's resolution in height is ~1e-12 relative), i.e. 1.06 × static as the digest says.
+  // the search's resolution in height is ~1e-12 relative), i.e. 1.06 × static as the reference says.
   double w_peak = 0, peak = 0;
   book_peak(p, 0.01, 3.0, w_peak, peak);
   EXPECT_NEAR(peak / ordinate, 1.0, 1e-9);
@@ -307,8 +307,9 @@ TEST(ShipRollDamperOracle, MinimaxBrakePutsTheRollPeakOnTheHighestInvariantPoint
     const Steady side = steady_response(p, kE0, f * w2);
     EXPECT_LT(side.phi_A / side.forcing, top.phi_A / top.forcing) << "w/w_II " << f;
   }
-  // The digest's other two brakes (peak × static). Recomputed from (14.11): 2.632 and 8.437; the digest
-  // prints 2.62 and 8.49 (0.4 % and 0.6 % off). The simulated peaks confirm the recomputed values to 1e-5.
+  // The reference's other two brakes (peak × static). Recomputed from (14.11): 2.632 and 8.437; the
+  // reference table gives 2.62 and 8.49 (0.4 % and 0.6 % off). The simulated peaks confirm the recomputed
+  // values to 1e-5.
   struct Case {
     double d2, lo, hi, peak_x_static;
   };

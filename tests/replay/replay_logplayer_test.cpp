@@ -1,6 +1,7 @@
 // lcm-logplayer plays a gyrostab bus log onto a real LCM bus, and lcm-logger records every event of it with
 // the same channel and payload: the log is an ordinary LCM event log. Runs inside a private network namespace
-// (unshare -n, or unshare -rn when not root; loopback up with multicast and a 224.0.0.0/4 route, DESIGN §8),
+// (unshare -n, or unshare -rn when not root; loopback up with multicast and a 224.0.0.0/4 route,
+// docs/architecture.md, messages and transports),
 // so no packet leaves the host; where no namespace can be made (container without the privilege), the test
 // exits 77 = SKIP (ctest SKIP_RETURN_CODE).
 #include <gtest/gtest.h>

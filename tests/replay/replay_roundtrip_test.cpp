@@ -1,6 +1,7 @@
 // Every shipped scene, run in process with `--log`, gives a complete bus log whose replay into the controller
 // alone reproduces every actuator frame bit for bit and whose open-loop re-simulation reproduces every sensor
-// frame bit for bit; recording the same scene twice gives byte-identical logs (DESIGN §2: same scene + seed
+// frame bit for bit; recording the same scene twice gives byte-identical logs (docs/architecture.md, the
+// loop: same scene + seed
 // ⇒ bit-identical logs).
 #include <gtest/gtest.h>
 

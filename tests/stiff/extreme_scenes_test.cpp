@@ -1,4 +1,4 @@
-// The stiff and extreme cases (issue 5; docs/extreme.md): every scene in sim/scenes/extreme/ run as
+// The stiff and extreme cases (docs/extreme.md): every scene in sim/scenes/extreme/ run as
 // `gyrostab run` runs it (tools::run_scene, outputs kept in memory). Each case is either refused before
 // running — exit 2, the message naming the reason — or runs to the end with a finite state and the error
 // bound its report states holding. The tolerances are justified case by case.
@@ -117,7 +117,8 @@ TEST(ExtremeSpin, PrecessionModelStaysWithinTheDigestBoundsOfTheFullModel) {
     expect_error_estimate(o);
     alpha_error[i++] = rm["measured_error"]["alpha_rad_max"].get<double>();
   }
-  // The digest's leading-order errors scale as 1/H² (2MB/H², M/(H ω_N)): ×100 per decade of spin.
+  // P0's leading-order errors (docs/models/gimbal-gyro.md#precession-model-p0) scale as 1/H² (2MB/H²,
+  // M/(H ω_N)): ×100 per decade of spin.
   // Measured: 101.4 and 109.2 (the law is the leading order; 20 % allowed).
   EXPECT_NEAR(alpha_error[0] / alpha_error[1], 100.0, 20.0);
   EXPECT_NEAR(alpha_error[1] / alpha_error[2], 100.0, 20.0);

@@ -1,9 +1,10 @@
-// Only what a scene names is in its loop (DESIGN §5, issue 5): the power stabilizer's plant is composed at
-// compile time from its options (sim/models/power_stabilizer.hpp, tools/devices/power_stabilizer_scene.cpp),
-// an option that is off adds no state and no storage, and the runtime options that stay (sensor noise, the
-// base's roll) cost nothing when zero. Deterministic facts only: state sizes (kStateSize of the composed
-// types, the report's "plant" block of assembled scenes), empty types, storage; the per-tick cost itself is
-// measured by tools/bench/plant_composition_bench.cpp, never asserted here.
+// Only what a scene names is in its loop (docs/architecture.md, scenes; docs/extreme.md): the power
+// stabilizer's plant is composed at compile time from its options (sim/models/power_stabilizer.hpp,
+// tools/devices/power_stabilizer_scene.cpp), an option that is off adds no state and no storage, and the
+// runtime options that stay (sensor noise, the base's roll) cost nothing when zero. Deterministic facts only:
+// state sizes (kStateSize of the composed types, the report's "plant" block of assembled scenes), empty
+// types, storage; the per-tick cost itself is measured by tools/bench/plant_composition_bench.cpp, never
+// asserted here.
 #include <gtest/gtest.h>
 
 #include <string>

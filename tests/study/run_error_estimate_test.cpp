@@ -1,4 +1,4 @@
-// Every `gyrostab run` report carries an error estimate beside its run time (issue 5, docs/accuracy.md): for
+// Every `gyrostab run` report carries an error estimate beside its run time (docs/accuracy.md): for
 // every shipped scene, run to its full duration, report.json "error_estimate" is available, the window's
 // re-integration at the run's own step lands on the run's states bit for bit (`reproduces_run`: the capture
 // of state and held inputs is complete) and every per-state estimate is finite and non-negative. The one

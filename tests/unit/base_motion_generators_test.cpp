@@ -105,7 +105,8 @@ TEST(RegularWaveMoment, IsE0CosOmegaTAndFromWaveUsesTheWaveSlope) {
   EXPECT_NEAR(e(2 * kPi / 0.6 / 4), 0.0, 1e-9);
   const double h = 1e-4;
   for (double t = 0.0; t < 20.0; t += 0.77) EXPECT_NEAR(e.rate(t), (e(t + h) - e(t - h)) / (2 * h), 1e-3);
-  // c = 1.1772e7 N m/rad (digest §3.2 example ship), κ = 0.8, a = 1 m, ω = 0.6 rad/s: E0 = c κ ω² a / g.
+  // c = 1.1772e7 N m/rad (the reference ship of docs/models/ship-roll-damper.md), κ = 0.8, a = 1 m, ω =
+  // 0.6 rad/s: E0 = c κ ω² a / g.
   const auto w = motion::RegularWaveMoment::from_wave(1.1772e7, 0.8, 1.0, 0.6);
   EXPECT_NEAR(w.E0, 1.1772e7 * 0.8 * 0.36 / 9.80665, 1e-6);
 }

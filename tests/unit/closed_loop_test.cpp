@@ -1,6 +1,6 @@
-// The in-process loop's timing contract: the command computed from the sensor frame of tick k is applied
-// by the plant at exactly tick k + latency (DESIGN §2), for latency 0, 1 and 3; before that the device's
-// initial command holds.
+// The in-process loop's timing contract: the command computed from the sensor frame of tick k is applied by
+// the plant at exactly tick k + latency (docs/architecture.md, the loop), for latency 0, 1 and 3; before that
+// the device's initial command holds.
 #include "tools/run/closed_loop.hpp"
 
 #include <gtest/gtest.h>

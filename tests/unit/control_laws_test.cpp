@@ -1,7 +1,8 @@
 // The control laws of firmware/control/ on their own: each law's sign (against the book's equations), its
 // saturation, the soft-limit and end-stop behaviour of the active precession control, the monorail gain
-// window (14.5) refusing on both sides with the digest's numbers, and the servo-gyro rate loop on the
-// gimbal equation (14.41). Expected values are computed here from the book's formulas, not from the laws.
+// window (14.5) refusing on both sides with the reference car's numbers (docs/models/monorail.md), and the
+// servo-gyro rate loop on the gimbal equation (14.41). Expected values are computed here from the book's
+// formulas, not from the laws.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -344,8 +345,8 @@ TEST(MonorailMotorLaw, SaturatesAtTheTorqueLimit) {
 }
 
 TEST(MonorailMotorLaw, GainWindowMatchesTheDigestsConstructedCar) {
-  // Digest §3.1: A 3000, c 2e4, B 50, q 500, H 4000, d 200 → ω_P = 0.864, ω_N = 9.447, 1112 < k < 14388.
-  // Tolerances: half a unit of the digest's last printed digit.
+  // Reference car (docs/models/monorail.md): A 3000, c 2e4, B 50, q 500, H 4000, d 200 → ω_P = 0.864,
+  // ω_N = 9.447, 1112 < k < 14388. Tolerances: half a unit of the reference's last given digit.
   const MonorailGainWindow w = monorail_gain_window(MonorailMotorParams{});
   ASSERT_TRUE(w.gyro_strong_enough);
   EXPECT_NEAR(w.omega_P, 0.864, 5e-4);
@@ -357,7 +358,7 @@ TEST(MonorailMotorLaw, GainWindowMatchesTheDigestsConstructedCar) {
 TEST(MonorailMotorLaw, RefusesGainsBelowAndAboveTheWindowWithTheComputedBounds) {
   MonorailMotorParams p{};
   const MonorailGainWindow w = monorail_gain_window(p);
-  // The digest's root checks: k = 1001 and 15827 unstable, 1123 and 14244 stable.
+  // The reference root checks: k = 1001 and 15827 unstable, 1123 and 14244 stable.
   for (double k : {1001.0, 15827.0}) {
     p.k = k;
     const ConfigCheck c = check_monorail_motor(p, kT);

@@ -277,7 +277,7 @@ TYPED_TEST(ControllerTest, ZeroHeapAllocationsOverAMillionSteps) {
 
 TEST(ControllerRuntime, ARefusedMonorailGainGivesTheBoundsAndOnlyTheSafeCommand) {
   MonorailConfig cfg{};
-  cfg.law.k = 1001.0;  // below the window 1112 < k < 14388 (digest §3.1)
+  cfg.law.k = 1001.0;  // below the window 1112 < k < 14388 (docs/models/monorail.md)
   const ConfigCheck c = MonorailController::check(cfg);
   EXPECT_FALSE(c.ok);
   EXPECT_NEAR(c.lower, 1112.0, 0.5);

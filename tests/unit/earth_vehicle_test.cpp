@@ -1,7 +1,8 @@
 // Earth/vehicle motion generator (sim/motion/earth_vehicle.hpp): analytic velocities, accelerations and
 // trihedron angular velocities against central differences of the sampled positions and attitudes; the
 // geographic rates against Magnus (16.51); Chelnokov's Darboux relations w1 = R(q0' + p0 r0),
-// w2 = −R(p0' − q0 r0), w3 = −R(p0² + q0²) (§2.4, digest §6.4 [OCR-fix]) for every trihedron with Z3 up;
+// w2 = −R(p0' − q0 r0), w3 = −R(p0² + q0²) (§2.4; the paper's printed w1, w2 lose their dots) for every
+// trihedron with Z3 up;
 // the azimuth-free trihedron's zero vertical rate; exact closure of a full coordinated turn.
 #include "sim/motion/earth_vehicle.hpp"
 

@@ -1,4 +1,4 @@
-// The gyro instruments' firmware (issue 6 part B): the correction laws of the gyro vertical (12.35), the
+// The gyro instruments' firmware: the correction laws of the gyro vertical (12.35), the
 // gyrocompass law (13.8) and its tuning formulas (13.12), (13.26), the Schuler loop (16.36)/(16.39), and the
 // three controllers through the common runtime API (frame mapping, hold and safe state on bad frames,
 // refused configurations, zero allocations). Expected values are computed here from the book's formulas.
@@ -120,7 +120,8 @@ TEST(GyrocompassLaw, TorquesTuningAndChecks) {
   EXPECT_FALSE(t.limited);
   p.torque_limit_Nm = 1e-5;
   EXPECT_TRUE(gyrocompass_torques(p, 1e-3).limited);
-  // (13.26) at 50°: c/H = 0.03285 /s (digest); (13.12) damping for ζ = 0.3 gives δ = 7.45e-4 /s.
+  // (13.26) at 50°: c/H = 0.03285 /s (tuning table, docs/models/gyrocompass.md); (13.12) damping for ζ = 0.3
+  // gives δ = 7.45e-4 /s.
   const double lat = 50.0 * kPi / 180.0, we = 7.292115e-5;
   const double c = schuler_tuned_pendulosity(2.0, lat, 9.81, 6.371e6, we);
   EXPECT_NEAR(c / 2.0, 0.03285, 5e-6);

@@ -1,7 +1,8 @@
-// The pieces of the plant ⇄ controller link (issue 4) without processes: the plant's actuator-frame checks,
-// the frame-order rules, the endpoint's codec-level counting over the in-memory bus, the plant's lockstep
-// wait (a bad command before the good one, a bad command alone, silence), the LCM transport over memq:// (an
-// oversize message is measured and refused, not truncated), the latency histogram and the CLI parsers.
+// The pieces of the plant ⇄ controller link (the two-process LCM mode) without processes: the plant's
+// actuator-frame checks, the frame-order rules, the endpoint's codec-level counting over the in-memory bus,
+// the plant's lockstep wait (a bad command before the good one, a bad command alone, silence), the LCM
+// transport over memq:// (an oversize message is measured and refused, not truncated), the latency histogram
+// and the CLI parsers.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -246,7 +246,8 @@ TEST(Scheduler, ResetCountersKeepsTheTable) {
   EXPECT_EQ(s.size(), 1u);
 }
 
-// The host clock only has to be usable and monotonic here; its values are not asserted (DESIGN §10: compute
+// The host clock only has to be usable and monotonic here; its values are not asserted (docs/architecture.md,
+// tests: compute
 // time is measured by benchmarks, not asserted against the wall clock).
 TEST(Scheduler, PosixMonotonicClockNeverGoesBackwards) {
   posix::MonotonicClock clock;

@@ -45,7 +45,7 @@ TEST(StepValidation, RefusesRk4AtOneKilohertzWithModeFrequencyAndLargestStep) {
 }
 
 TEST(StepValidation, RefusesRk4BeyondItsStabilityLimit) {
-  // RK4 on iω is unstable beyond hω = 2√2 (2.25 ms for 200 Hz, numerics.md §3.5).
+  // RK4 on iω is unstable beyond hω = 2√2 (2.25 ms for 200 Hz, docs/models/integrators.md).
   const dynamics::Mode m{"nutation", {0.0, 1256.6}};
   const auto c = dynamics::check_step(dynamics::Method::kRk4, m, 2.3e-3);
   EXPECT_FALSE(c.ok);
