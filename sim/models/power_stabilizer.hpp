@@ -135,6 +135,11 @@ class PowerStabilizer {
   using State = Eigen::Matrix<double, kStateSize, 1>;
   using Gyro = std::conditional_t<kPrecession, GimbalGyroPrecession<Base>, GimbalGyro<Base>>;
   static constexpr const char* kName = "power-stabilizer";
+  // The state's components, by name: the gimbal angles and rates (the precession model has no rates), the
+  // spin momentum H, and the elastic platform's angle and rate.
+  static constexpr int kAlpha = 0, kBeta = 1, kAlphaRate = 2, kBetaRate = 3;
+  static constexpr int kSpin = kPrecession ? 2 : 4;
+  static constexpr int kPlatform = 5, kPlatformRate = 6;
 
   explicit PowerStabilizer(const GimbalGyroParams& gyro = {}, const Drive& drive = {},
                            const Structure& structure = {}, const Base& base = {})

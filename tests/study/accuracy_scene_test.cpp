@@ -9,11 +9,12 @@
 
 #include "sim/dynamics/rk4.hpp"
 #include "tools/accuracy/accuracy_command.hpp"
-#include "tools/accuracy/half_step_window.hpp"
+#include "sim/analysis/half_step_window.hpp"
 #include "tools/accuracy/our_methods.hpp"
 #include "tools/accuracy/oscillator_problem.hpp"
-#include "tools/accuracy/power_stabilizer_problem.hpp"
-#include "tools/accuracy/ship_problem.hpp"
+#include "tools/devices/power_stabilizer/power_stabilizer_problem.hpp"
+#include "tools/devices/ship_roll_damper/ship_problem.hpp"
+#include "tools/run/error_estimate_report.hpp"
 #include "tools/commands.hpp"
 
 namespace gyrostab::tools::accuracy {
@@ -49,7 +50,7 @@ TEST(AccuracyScene, ShipProblemReplaysTheClosedLoopBitForBit) {
     ASSERT_EQ(ship_roll_damper_study_setup(reader, 20000, setup), 0) << scene;
     ShipProblem problem(setup);
     Trajectory<ShipProblem::State> traj(20001);
-    ASSERT_TRUE(integrate_ours("rk4", problem, setup.loop.substeps, traj).ok);
+    ASSERT_TRUE(integrate_ours("rk4", problem, setup.loop().substeps, traj).ok);
     for (std::size_t k = 0; k < setup.states.size(); ++k) ASSERT_EQ(traj[k + 1], setup.states[k]) << scene << " tick " << k;
     EXPECT_GT(std::abs(setup.states.back()[0]), 1e-4) << scene;  // the sea rolled the ship
   }
@@ -135,7 +136,7 @@ TEST(RunErrorEstimate, HalfStepWindowEstimatesTheWindowErrorOfRk4) {
   const std::int64_t tick_ns = 5'000'000;  // ωh = 0.2
   OscillatorModel model;
   model.omega2 = omega * omega;
-  HalfStepWindow<OscillatorModel, double> window(100, 200);
+  analysis::HalfStepWindow<OscillatorModel, double> window(100, 200);
   dynamics::Rk4<OscillatorModel> rk4(model);
   dynamics::SubstepDriver<dynamics::Rk4<OscillatorModel>> driver(rk4, tick_ns, 1);
   OscillatorModel::State x(1.0, 0.0);
@@ -148,7 +149,8 @@ TEST(RunErrorEstimate, HalfStepWindowEstimatesTheWindowErrorOfRk4) {
     window.after_tick(k, x);
   }
   const auto apply = [](OscillatorModel& m, const double& u) { m.u = u; };
-  const nlohmann::json e = window.estimate<dynamics::Rk4>(model, apply, tick_ns, 1, 4, {"x", "v"}, "energy, unused here");
+  const nlohmann::json e =
+      error_estimate_json<2>(window.estimate<dynamics::Rk4>(model, apply, tick_ns, 1, 4), {"x", "v"}, "energy, unused here");
   ASSERT_TRUE(e["reproduces_run"].get<bool>());
   // The true error of the run over the window: the run's states against the exact flow from at_window.
   std::vector<double> force(200);

@@ -1,6 +1,6 @@
 // The plant and controller processes of the two-process LCM mode as two threads of the test process, joined
-// by the in-memory bus (hil/link/memory_bus.hpp) instead of LCM: the same loops (tools/run/plant_process.hpp,
-// controller_process.hpp), codec and checks, without a network. For the allocation test (the hooks run behind
+// by the in-memory bus (hil/link/memory_bus.hpp) instead of LCM: the same loops (tools/run/plant_process.cpp,
+// controller_process.cpp), codec and checks, without a network. For the allocation test (the hooks run behind
 // a two-thread barrier, so one snapshot covers both loops from their first tick to their last) and the
 // lockstep determinism test.
 #pragma once

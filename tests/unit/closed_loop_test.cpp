@@ -3,6 +3,8 @@
 // the device's initial command holds.
 #include "tools/run/closed_loop.hpp"
 
+#include "tests/support/test_ports.hpp"
+
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -21,7 +23,6 @@ struct EchoController {
 };
 
 struct LoggingDevice {
-  EchoController c;
   std::vector<double> applied_at;  // per tick: the torque the plant integrated with
   double current{-1.0};
   void sense(std::int64_t tick, msg::SensorFrame& f) {
@@ -37,17 +38,18 @@ struct LoggingDevice {
     a.gimbal_torque_Nm[0] = -1.0;
     return a;
   }
-  EchoController& controller() { return c; }
 };
 
 TEST(ClosedLoop, CommandFromFrameKIsAppliedAtTickKPlusLatency) {
   for (const int latency : {0, 1, 3}) {
-    LoggingDevice d;
+    tools::PlantPortOf<LoggingDevice> plant;
+    testing::LawPort<EchoController> controller;
+    const LoggingDevice& d = plant.binding();
     tools::LoopConfig cfg;
     cfg.duration_s = 0.02;
     cfg.tick_ns = 1'000'000;
     cfg.latency_ticks = latency;
-    const auto out = tools::run_closed_loop(d, cfg, nullptr);
+    const auto out = tools::run_closed_loop(plant, controller, cfg, nullptr);
     ASSERT_EQ(out.ticks_run, 20);
     ASSERT_EQ(d.applied_at.size(), 20u);
     for (int k = 0; k < 20; ++k) {
@@ -62,10 +64,11 @@ struct DivergingDevice : LoggingDevice {
 };
 
 TEST(ClosedLoop, StopsAtTheFirstNonFiniteStateAndSaysWhere) {
-  DivergingDevice d;
+  tools::PlantPortOf<DivergingDevice> plant;
+  testing::LawPort<EchoController> controller;
   tools::LoopConfig cfg;
   cfg.duration_s = 1.0;
-  const auto out = tools::run_closed_loop(d, cfg, nullptr);
+  const auto out = tools::run_closed_loop(plant, controller, cfg, nullptr);
   EXPECT_TRUE(out.diverged);
   EXPECT_EQ(out.diverged_tick, 6);
   EXPECT_EQ(out.ticks_run, 7);

@@ -18,7 +18,7 @@
 #include "hil/rt/latency_histogram.hpp"
 #include "tests/support/alloc_counter.hpp"
 #include "tools/run/link_cli.hpp"
-#include "tools/run/plant_process.hpp"
+#include "tools/run/command_wait.hpp"
 
 namespace gyrostab {
 namespace {

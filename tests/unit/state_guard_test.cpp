@@ -3,6 +3,8 @@
 // its state still stops at the tick.
 #include "tools/run/closed_loop.hpp"
 
+#include "tests/support/test_ports.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -26,7 +28,6 @@ struct BlowingUpDevice {
   }
   double state_value(int i) const { return x[static_cast<std::size_t>(i)]; }
 
-  NullController c;
   std::array<double, 3> x{0.0, 0.5, 1.0};
   void sense(std::int64_t, msg::SensorFrame& f) { f = msg::SensorFrame{}; }
   void actuate(const msg::ActuatorFrame&) {}
@@ -38,14 +39,14 @@ struct BlowingUpDevice {
   bool finite() const { return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]); }
   void record(double*) const {}
   msg::ActuatorFrame initial_command() const { return {}; }
-  NullController& controller() { return c; }
 };
 
 TEST(StateGuard, NamesTheFirstNonFiniteComponentAndItsLastFiniteValue) {
-  BlowingUpDevice d;
+  tools::PlantPortOf<BlowingUpDevice> plant;
+  testing::LawPort<NullController> controller;
   tools::LoopConfig cfg;
   cfg.duration_s = 1.0;
-  const tools::LoopOutcome out = tools::run_closed_loop(d, cfg, nullptr);
+  const tools::LoopOutcome out = tools::run_closed_loop(plant, controller, cfg, nullptr);
   ASSERT_TRUE(out.diverged);
   EXPECT_EQ(out.diverged_tick, 6);
   EXPECT_EQ(out.ticks_run, 7);
@@ -63,7 +64,6 @@ TEST(StateGuard, NamesTheFirstNonFiniteComponentAndItsLastFiniteValue) {
 
 // Without the optional part of the concept the guard still stops at the tick and says so.
 struct AnonymousDevice {
-  NullController c;
   int ticks{0};
   void sense(std::int64_t, msg::SensorFrame& f) { f = msg::SensorFrame{}; }
   void actuate(const msg::ActuatorFrame&) {}
@@ -71,16 +71,16 @@ struct AnonymousDevice {
   bool finite() const { return ticks < 4; }
   void record(double*) const {}
   msg::ActuatorFrame initial_command() const { return {}; }
-  NullController& controller() { return c; }
 };
 
 TEST(StateGuard, ADeviceThatDoesNotNameItsStateStillStopsAtTheTick) {
   static_assert(!tools::NamesItsState<AnonymousDevice>);
   static_assert(tools::NamesItsState<BlowingUpDevice>);
-  AnonymousDevice d;
+  tools::PlantPortOf<AnonymousDevice> plant;
+  testing::LawPort<NullController> controller;
   tools::LoopConfig cfg;
   cfg.duration_s = 1.0;
-  const tools::LoopOutcome out = tools::run_closed_loop(d, cfg, nullptr);
+  const tools::LoopOutcome out = tools::run_closed_loop(plant, controller, cfg, nullptr);
   ASSERT_TRUE(out.diverged);
   EXPECT_EQ(out.diverged_tick, 3);
   EXPECT_EQ(out.diverged_state.name, nullptr);

@@ -12,7 +12,7 @@
 //                            --benchmark_report_aggregates_only=true
 //
 // ship/<piece>: one tick's share of each piece of the ship scene's loop
-// (tools/devices/ship_roll_damper_scene.cpp builds the same objects with the shipped scene's parameters): the
+// (sim/plants/ship_roll_damper_plant.hpp builds the same objects from the shipped scene's parameters): the
 // irregular sea (96 of 256 components), the plant's RK4 step (stabilized ship and the locked reference ship,
 // each 4 stages, sea evaluated at every stage), the sensors, the firmware controller (with the
 // CLOCK_MONOTONIC counters the run uses and without).
@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -40,7 +41,8 @@
 #include "sim/sensors/encoder.hpp"
 #include "sim/sensors/sensor_noise.hpp"
 #include "tools/commands.hpp"
-#include "tools/devices/ship_in_sea.hpp"
+#include "sim/plants/ship_in_sea.hpp"
+#include "tools/devices/ship_roll_damper/ship_roll_damper_scene.hpp"
 #include "tools/scene/loop_config.hpp"
 #include "tools/scene/scene_reader.hpp"
 
@@ -138,26 +140,32 @@ const bool scenes_registered = [] {
 // ---- ship roll damper: the pieces of one tick
 // --------------------------------------------------------------
 
-// The shipped ship scene's numbers (sim/scenes/ship-roll-damper-active.toml).
 constexpr double kTick = 1e-3;
 
-motion::IrregularSea<256> make_ship_sea() {
-  motion::WaveSpectrumParams sp;
-  sp.Hs = 2.5;
-  sp.Tp = 10.0;
-  sp.gamma = 3.3;
-  motion::IrregularSeaParams p;
-  p.components = 96;
-  p.grid_period = kTick;
-  random::SeededRng rng(20261122, 1);
-  return motion::IrregularSea<256>(motion::WaveSpectrum(sp), p, rng,
-                                   motion::WaveRollMomentTransfer{1.1772e7, 0.7});
+// The shipped active ship scene as the scene reader reads it (sim/scenes/ship-roll-damper-active.toml).
+const tools::ShipRollDamperScene& ship_scene() {
+  static const tools::ShipRollDamperScene scene = [] {
+    tools::ShipRollDamperScene s;
+    tools::SceneReader r;
+    if (!r.open(GYROSTAB_SOURCE_DIR "/sim/scenes/ship-roll-damper-active.toml") ||
+        !tools::read_ship_roll_damper_scene(r, s)) {
+      std::fprintf(stderr, "scene_bench: the shipped ship scene does not read\n");
+      std::abort();
+    }
+    return s;
+  }();
+  return scene;
+}
+
+// The scene's own sea moment (the one its plant and the accuracy study build).
+motion::SeaRollMoment make_ship_sea() {
+  const tools::ShipRollDamperScene& s = ship_scene();
+  return motion::SeaRollMoment(s.plant.sea, kTick, random::SeededRng(s.loop.seed, plants::ShipRollDamperPlant::kSeaStream),
+                               s.plant.ship.c);
 }
 
 models::ShipRollDamperParams ship_params(bool locked) {
-  models::ShipRollDamperParams p;
-  p.d1 = 1.94e6;
-  p.d2 = 0.0;
+  models::ShipRollDamperParams p = ship_scene().plant.ship;
   p.locked = locked;
   return p;
 }
@@ -186,7 +194,7 @@ BENCHMARK(BM_ShipSeaPerTick)->Name("ship/sea_8_stage_calls");
 // One RK4 step of one plant, with the sea (`with_sea`) or a constant moment; locked = the reference ship.
 template <bool kLocked, bool kWithSea>
 void BM_ShipPlantStep(benchmark::State& state) {
-  using Sea = std::conditional_t<kWithSea, motion::IrregularSea<256>, ConstantMoment>;
+  using Sea = std::conditional_t<kWithSea, motion::SeaRollMoment, ConstantMoment>;
   const Sea sea = [] {
     if constexpr (kWithSea) {
       return make_ship_sea();
@@ -194,15 +202,15 @@ void BM_ShipPlantStep(benchmark::State& state) {
       return ConstantMoment{};
     }
   }();
-  using Plant = tools::ShipInSeaOf<Sea>;
+  using Plant = plants::ShipInSeaOf<Sea>;
   Plant plant{models::ShipRollDamper(ship_params(kLocked)), &sea, 0.0, 0.0};
   dynamics::Rk4<Plant> rk4(plant);
   typename Plant::State x = Plant::State::Zero();
-  x[0] = 0.05;
-  x[1] = 0.3;
+  x[models::ShipRollDamper::kRoll] = 0.05;
+  x[models::ShipRollDamper::kPrecession] = 0.3;
   std::int64_t k = 0;
   for (auto _ : state) {
-    plant.command_Nm = -1e4 * x[3];
+    plant.command_Nm = -1e4 * x[models::ShipRollDamper::kPrecessionRate];
     rk4.step(static_cast<double>(k) * kTick, kTick, x);
     ++k;
     benchmark::DoNotOptimize(x.data());
@@ -221,8 +229,8 @@ void BM_ShipDerivative(benchmark::State& state) {
   for (auto _ : state) {
     ship.derivative(0.0, x, dx);
     benchmark::DoNotOptimize(dx.data());
-    x[0] += 1e-9;
-    x[1] += 1e-9;
+    x[models::ShipRollDamper::kRoll] += 1e-9;
+    x[models::ShipRollDamper::kPrecession] += 1e-9;
   }
   state.SetItemsProcessed(state.iterations());
 }

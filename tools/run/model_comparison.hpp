@@ -1,10 +1,10 @@
-// Reduced model against the full model on the same scene, in the same invocation (DESIGN §5, issue 5): the
-// full-model device runs the scene first with its compared signals traced (TracingDevice); then the reduced
-// device runs the same loop (same seed, sensors, controller and inputs) while ComparingDevice takes the
-// largest difference of each compared signal from the trace, tick by tick. Both runs are deterministic, so
-// the measured error is too. Nothing is allocated per tick: the trace is sized before the first loop.
+// Reduced model against the full model on the same scene, in the same invocation: the full-model plant runs
+// the scene first with its compared signals traced (TracingDevice); then the reduced plant runs the same loop
+// (same seed, sensors, controller and inputs) while ComparingDevice takes the largest difference of each
+// compared signal from the trace, tick by tick. Both runs are deterministic, so the measured error is too.
+// Nothing is allocated per tick: the trace is sized before the first loop.
 //
-// A compared device provides, besides the loop concept (closed_loop.hpp):
+// A compared plant provides, besides the plant concept (plant_port.hpp):
 //   static constexpr int kComparedSignals;              // ≤ kMaxComparedSignals
 //   static const char* compared_signal_name(int i);
 //   double compared_signal(int i) const;                 // after advance(k): the value at the end of tick k
@@ -16,11 +16,15 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "tools/run/closed_loop.hpp"
+#include "firmware/msg/actuator_frame.hpp"
+#include "firmware/msg/sensor_frame.hpp"
+#include "tools/run/loop_outcome.hpp"
 
 namespace gyrostab::tools {
 
@@ -62,9 +66,7 @@ class TracingDevice {
   }
   bool finite() const { return d_.finite(); }
   void record(double* row) const { d_.record(row); }
-  static std::vector<std::string> columns() { return Device::columns(); }
-  msg::ActuatorFrame initial_command() const { return d_.initial_command(); }
-  auto& controller() { return d_.controller(); }
+  nlohmann::json figures() const { return nlohmann::json::object(); }
 
  private:
   Device& d_;
@@ -82,8 +84,9 @@ struct ComparisonSetup {
   std::string full_integrator;
 };
 
-// The reduced-model run: forwards the loop concept (and the optional guard, figures, error estimate, report
-// blocks) to the reduced device, and compares its compared signals with the trace after every traced tick.
+// The reduced-model run: owns the reduced plant (built in place from `args`), the full model's trace and the
+// comparison's set-up; forwards the plant concept (and the optional guard, figures, error estimate, report
+// blocks) to the reduced plant, and compares its compared signals with the trace after every traced tick.
 template <class Device>
 class ComparingDevice {
  public:
@@ -92,8 +95,9 @@ class ComparingDevice {
   static const char* state_name(int i) { return Device::state_name(i); }
   double state_value(int i) const { return d_.state_value(i); }
 
-  ComparingDevice(Device& d, const ComparisonTrace& trace, const ComparisonSetup& setup)
-      : d_(d), trace_(trace), setup_(setup) {}
+  template <class... Args>
+  ComparingDevice(std::unique_ptr<const ComparisonTrace> trace, ComparisonSetup setup, Args&&... args)
+      : d_(std::forward<Args>(args)...), trace_(*trace), owned_trace_(std::move(trace)), setup_(std::move(setup)) {}
 
   void sense(std::int64_t k, msg::SensorFrame& f) { d_.sense(k, f); }
   void actuate(const msg::ActuatorFrame& c) { d_.actuate(c); }
@@ -112,9 +116,6 @@ class ComparingDevice {
   }
   bool finite() const { return d_.finite(); }
   void record(double* row) const { d_.record(row); }
-  static std::vector<std::string> columns() { return Device::columns(); }
-  msg::ActuatorFrame initial_command() const { return d_.initial_command(); }
-  auto& controller() { return d_.controller(); }
   nlohmann::json figures() const { return d_.figures(); }
   nlohmann::json error_estimate() const requires requires(const Device& d) { d.error_estimate(); } {
     return d_.error_estimate();
@@ -156,9 +157,10 @@ class ComparingDevice {
   }
 
  private:
-  Device& d_;
+  Device d_;
   const ComparisonTrace& trace_;
-  const ComparisonSetup& setup_;
+  std::unique_ptr<const ComparisonTrace> owned_trace_;
+  ComparisonSetup setup_;
   std::array<double, kMaxComparedSignals> max_error_{};
   std::array<double, kMaxComparedSignals> sum_sq_{};
   std::int64_t compared_{0};

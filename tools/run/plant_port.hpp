@@ -9,7 +9,7 @@
 //   void advance(std::int64_t tick);                        // integrate [k, k + 1) and feed the meters
 //   bool finite() const;
 //   void record(double* row) const;                         // the scene's columns, in order
-//   nlohmann::json figures() const;                         // report.json "figures"
+//   (optional) nlohmann::json figures() const;              // report.json "figures"
 //   (optional) kGuardedStates, state_name(i), state_value(i)   tools/run/state_guard.hpp
 //   (optional) nlohmann::json report_extra() const;         // blocks beside "figures" ("plant", "drift", ...)
 //   (optional) nlohmann::json error_estimate() const;       // report.json "error_estimate"
@@ -70,7 +70,13 @@ class PlantPortOf final : public PlantPort {
       return msg::ActuatorFrame{};
     }
   }
-  nlohmann::json figures() const override { return b_.figures(); }
+  nlohmann::json figures() const override {
+    if constexpr (requires(const Binding& b) { b.figures(); }) {
+      return b_.figures();
+    } else {
+      return nlohmann::json::object();
+    }
+  }
   nlohmann::json report_extra() const override {
     if constexpr (requires(const Binding& b) { b.report_extra(); }) {
       return b_.report_extra();

@@ -41,6 +41,7 @@
 #include "tools/run/bus_log_sink.hpp"
 #include "tools/run/can_link_setup.hpp"
 #include "tools/run/closed_loop.hpp"
+#include "tools/run/command_wait.hpp"
 #include "tools/run/link_report.hpp"
 #include "tools/run/link_settings.hpp"
 #include "tools/run/link_stats.hpp"
@@ -62,57 +63,6 @@ struct PlantLinkOutcome {
   bool transport_error{false};
   int stop_signal{0};
 };
-
-enum class CommandWait { kAccepted, kMissing, kLost, kStopped, kError };
-
-// Waits for the actuator frame of tick k (see the header for the rules). `cmd` receives it on kAccepted.
-template <class Transport>
-CommandWait wait_for_command(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& order,
-                             const hil::ActuatorLimits& limits, std::int64_t k, std::int64_t deadline_ns,
-                             bool lockstep, std::int64_t lost_at_ns, const LinkSettings& s,
-                             msg::ActuatorFrame& cmd) {
-  hil::LinkCounters& c = ep.counters();
-  std::int64_t next_resend = lockstep ? hil::monotonic_ns() + s.resend_ns : hil::kNoDeadline;
-  std::int64_t grace_until = hil::kNoDeadline;
-  const auto tick = static_cast<std::uint64_t>(k);
-  for (;;) {
-    const std::int64_t until = std::min({deadline_ns, lost_at_ns, next_resend, grace_until});
-    msg::ActuatorFrame f{};
-    const hil::RxStatus r = ep.receive(until, f);
-    if (r == hil::RxStatus::kError) return CommandWait::kError;
-    if (stop_signal_received() != 0) return CommandWait::kStopped;
-    if (r != hil::RxStatus::kMessage) {
-      const std::int64_t now = hil::monotonic_ns();
-      if (now >= lost_at_ns) return CommandWait::kLost;
-      if (now >= deadline_ns || now >= grace_until) return CommandWait::kMissing;
-      if (now >= next_resend) {
-        ep.resend();
-        next_resend = now + s.resend_ns;
-      }
-      continue;
-    }
-    const hil::ActuatorVerdict v = hil::check_actuator_values(f, limits);
-    if (v != hil::ActuatorVerdict::kOk) {
-      if (v == hil::ActuatorVerdict::kNonFinite) ++c.rejected_non_finite;
-      else ++c.rejected_out_of_range;
-      // The controller answered this tick with a command no drive may apply: no resend will change that.
-      if (lockstep && f.tick == tick && grace_until == hil::kNoDeadline) {
-        grace_until = hil::monotonic_ns() + s.resend_ns;
-        next_resend = hil::kNoDeadline;
-      }
-      continue;
-    }
-    const hil::OrderVerdict o = order.classify(f.tick, f.sequence, tick);
-    if (o != hil::OrderVerdict::kExpected) {
-      hil::count_order_rejection(o, c);
-      continue;
-    }
-    order.accept(f.tick, f.sequence);
-    ++c.accepted;
-    cmd = f;
-    return CommandWait::kAccepted;
-  }
-}
 
 template <class Transport>
 LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& limits, const LoopConfig& cfg,

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace gyrostab::tools {
+namespace gyrostab::analysis {
 
 class NutationMeter {
  public:
@@ -83,4 +83,4 @@ class NutationMeter {
   double amps_{0.0}, sum_tt_a_{0.0}, sum_tt_{0.0}, sum_la_{0.0}, sum_ta_{0.0};
 };
 
-}  // namespace gyrostab::tools
+}  // namespace gyrostab::analysis

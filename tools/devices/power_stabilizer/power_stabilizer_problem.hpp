@@ -17,7 +17,7 @@
 #include <cmath>
 
 #include "tools/accuracy/study_problem.hpp"
-#include "tools/devices/power_stabilizer_study.hpp"
+#include "tools/devices/power_stabilizer/power_stabilizer_study.hpp"
 
 namespace gyrostab::tools::accuracy {
 
@@ -27,6 +27,7 @@ class PowerStabilizerProblem {
   static constexpr int kStateSize = Model::kStateSize;
   using State = Model::State;
   static constexpr int kQuantities = 2;
+  static constexpr int kA = Model::kAlpha, kB = Model::kBeta, kAr = Model::kAlphaRate, kBr = Model::kBetaRate;
 
   explicit PowerStabilizerProblem(const PowerStabilizerStudySetup& s)
       : setup_(s), model_(s.plant_gyro, {}, {}, s.base) {}
@@ -52,7 +53,7 @@ class PowerStabilizerProblem {
         attitude = nutation = INFINITY;
         break;
       }
-      attitude = std::max({attitude, std::abs(a[0] - b[0]), std::abs(a[1] - b[1])});
+      attitude = std::max({attitude, std::abs(a[kA] - b[kA]), std::abs(a[kB] - b[kB])});
       nutation = std::max(nutation, std::abs(nutation_amplitude(a) - nutation_amplitude(b)));
     }
     out[0] = attitude;
@@ -62,14 +63,14 @@ class PowerStabilizerProblem {
   void scales(const Trajectory<State>& ref, double* out) const {
     out[0] = out[1] = 0.0;
     for (const State& x : ref) {
-      out[0] = std::max({out[0], std::abs(x[0]), std::abs(x[1])});
+      out[0] = std::max({out[0], std::abs(x[kA]), std::abs(x[kB])});
       out[1] = std::max(out[1], nutation_amplitude(x));
     }
   }
 
   double nutation_amplitude(const State& x) const {
     const models::GimbalGyroParams& p = model_.gyro().params();
-    return std::sqrt(p.outer_axis_inertia(x[1]) * x[2] * x[2] / p.B() + x[3] * x[3]);
+    return std::sqrt(p.outer_axis_inertia(x[kB]) * x[kAr] * x[kAr] / p.B() + x[kBr] * x[kBr]);
   }
 
  private:

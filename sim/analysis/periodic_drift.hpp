@@ -1,7 +1,7 @@
 // Drift over a long run of a periodically forced, stable closed loop: once the transient has died out, the
 // loop's state at the same phase of the forcing repeats period after period; the largest departure from the
 // reference period measures what the run accumulates (integration error, rounding of the time, quantization
-// walks) over hours. numerics.md §2.3/§3.4 style: the largest departure so far at 10³, 10⁴, … ticks after the
+// walks) over hours (docs/models/integrators.md): the largest departure so far at 10³, 10⁴, … ticks after the
 // reference period (linear drift grows by ×10 per decade, a bounded error does not).
 //
 // The reference period [from, from + period) is stored (allocation before the loop: period × signals
@@ -12,10 +12,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <vector>
 
-namespace gyrostab::tools {
+namespace gyrostab::analysis {
 
 class PeriodicDrift {
  public:
@@ -59,20 +58,17 @@ class PeriodicDrift {
   double worst(int i) const { return worst_[i]; }
   std::int64_t compared_ticks() const { return compared_; }
 
-  // `names[i]` labels signal i.
-  nlohmann::json report(const char* const* names, double tick_s) const {
-    nlohmann::json j{{"period_ticks", period_}, {"reference_from_s", static_cast<double>(from_) * tick_s},
-                     {"compared_ticks", compared_}};
-    nlohmann::json w = nlohmann::json::object();
-    for (int i = 0; i < n_; ++i) w[names[i]] = worst_[i];
-    j["max_departure"] = w;
-    nlohmann::json c = nlohmann::json::array();
-    for (int d = 0; d < kDecades && checkpoint_ticks_[d] > 0; ++d) {
-      c.push_back({{"ticks", checkpoint_ticks_[d]}, {"max_departure", checkpoints_[d]}});
-    }
-    j["max_departure_so_far"] = c;
-    return j;
+  int signals() const { return n_; }
+  std::int64_t period_ticks() const { return period_; }
+  std::int64_t from_tick() const { return from_; }
+  // The largest departure so far at 10³, 10⁴, … compared ticks: how many checkpoints were reached, and each.
+  int checkpoints() const {
+    int n = 0;
+    while (n < kDecades && checkpoint_ticks_[n] > 0) ++n;
+    return n;
   }
+  std::int64_t checkpoint_ticks(int d) const { return checkpoint_ticks_[d]; }
+  double checkpoint_departure(int d) const { return checkpoints_[d]; }
 
  private:
   int n_{0};
@@ -87,4 +83,4 @@ class PeriodicDrift {
   std::int64_t compared_{0};
 };
 
-}  // namespace gyrostab::tools
+}  // namespace gyrostab::analysis

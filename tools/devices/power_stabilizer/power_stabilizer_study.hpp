@@ -1,7 +1,7 @@
 // What the accuracy study (tools/accuracy/, `gyrostab accuracy`) takes from a power-stabilizer scene: the
-// plant exactly as the scene binding builds it, and the inputs its closed-loop run held over every tick
-// (zero-order hold: disturbance steps and motor torques), so that the study can integrate the same plant
-// open loop with any method. Implemented in power_stabilizer_scene.cpp (it needs the scene reading there).
+// plant exactly as the scene's plant builds it (sim/plants/power_stabilizer_plant.hpp), and the inputs its
+// closed-loop run held over every tick (zero-order hold: disturbance steps and motor torques), so that the
+// study can integrate the same plant open loop with any method.
 #pragma once
 
 #include <Eigen/Core>
@@ -33,5 +33,9 @@ struct PowerStabilizerStudySetup {
 // (problems in the reader), 3 the closed loop diverged, 4 a plant variant the study does not take (`why`).
 int power_stabilizer_study_setup(SceneReader& reader, std::int64_t ticks, PowerStabilizerStudySetup& out,
                                  std::string& why);
+
+struct AccuracyRequest;
+// `gyrostab accuracy` on a power-stabilizer scene (the registry's accuracy entry).
+int power_stabilizer_accuracy(SceneReader& reader, const AccuracyRequest& req);
 
 }  // namespace gyrostab::tools

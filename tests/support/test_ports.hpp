@@ -1,0 +1,30 @@
+// A test's controller as a ControllerPort: any class with step(tick, frame or nullptr, out), without the
+// firmware runtime's fault monitor (never in its safe state, nothing to acknowledge, no counters).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <utility>
+
+#include "tools/run/controller_port.hpp"
+
+namespace gyrostab::testing {
+
+template <class Law>
+class LawPort final : public tools::ControllerPort {
+ public:
+  template <class... Args>
+  explicit LawPort(Args&&... args) : law_(std::forward<Args>(args)...) {}
+  void step(std::uint64_t tick, const msg::SensorFrame* frame, msg::ActuatorFrame& out) override {
+    law_.step(tick, frame, out);
+  }
+  bool in_safe_state() const override { return false; }
+  void acknowledge() override {}
+  firmware::MonitorState monitor_state() const override { return firmware::MonitorState::kNormal; }
+  nlohmann::json report() const override { return nlohmann::json::object(); }
+  Law& law() { return law_; }
+
+ private:
+  Law law_;
+};
+
+}  // namespace gyrostab::testing

@@ -1,0 +1,35 @@
+// The power stabilizer's checks that need the plant built with the scene's options: physical validity, the
+// plant step against the fastest mode (sim/dynamics/step_validation.hpp), the explicit drive coupling's
+// stable step, the controller's start-up check with A, B as the plant has them, the loop at the inner
+// gimbal's operating points (the gimbal-lock approach), and — for the precession model — where P0 holds and
+// its expected error. Also the loop's predicted nutation root, which the checks and the figures share.
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "firmware/control/power_stabilizer_loops.hpp"
+#include "tools/devices/power_stabilizer/power_stabilizer_scene.hpp"
+#include "tools/scene/scene_reader.hpp"
+
+namespace gyrostab::tools {
+
+// Fills the derived parts of the scene (op_loops, controller.loops.A/B, full_loop, reduced_expected);
+// problems go to the reader. false when refused.
+bool check_power_stabilizer_plant(SceneReader& r, PowerStabilizerScene& s);
+// The checks above in words, for docs/scenes.md.
+std::vector<std::string> power_stabilizer_plant_rules();
+
+// The loop's nutation root from what the controller's check assumes (A incl. reflected inertia and, when
+// elastic, A^P — the quasi-static limit; total viscous damping = commanded + bearings):
+//   torque mode (14.23): AB λ⁴ + (A d2 + B d1) λ³ + (H² + d1 d2) λ² + H (k1 + k2) λ + k1 k2 = 0
+//   back-EMF (14.29) with bearings: AB λ³ + (A d2 + B D1) λ² + (H² + D1 d2) λ + H r s = 0, D1 = s d + d1
+// The root with the largest |Im|; Im reported ≥ 0.
+std::complex<double> predicted_nutation(const firmware::PowerStabilizerConfig& l);
+
+// When the nutation meter starts: the first disturbance step that is one (a torque applied from t = 0 is a
+// load the loop starts with, e.g. the hold of [initial] beta0_deg, not a step).
+double first_step_s(const plants::PowerDisturbance& d);
+
+}  // namespace gyrostab::tools
