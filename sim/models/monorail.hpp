@@ -86,6 +86,8 @@ class Monorail {
   static constexpr int kStateSize = 4;
   using State = Eigen::Matrix<double, 4, 1>;
   static constexpr const char* kName = "monorail";
+  // The state's components, by name.
+  static constexpr int kTilt = 0, kCase = 1, kTiltRate = 2, kCaseRate = 3;
 
   explicit Monorail(const MonorailParams& p = {}) : p_(p) {}
 

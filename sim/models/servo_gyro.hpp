@@ -76,6 +76,8 @@ class ServoGyro {
   static constexpr int kStateSize = 4;
   using State = Eigen::Matrix<double, 4, 1>;
   static constexpr const char* kName = "servo-gyro";
+  // The state's components, by name.
+  static constexpr int kAlpha = 0, kBeta = 1, kAlphaRate = 2, kBetaRate = 3;
 
   explicit ServoGyro(const ServoGyroParams& p = {}) : p_(p) {}
 

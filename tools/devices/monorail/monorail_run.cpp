@@ -1,0 +1,261 @@
+// What a monorail run reports: the plant of sim/plants/monorail_plant.hpp with its meters — tilt statistics
+// after the settling time, the case-angle and motor-torque peaks, the steady leans into the gust and into the
+// curve (the mean over the last second of each plateau) beside the small-angle prediction of (14.6), the
+// overturning — the gain window (k_lo, k_hi) of (14.5) on the straight and in the curve with the configured
+// k, the decay rates of (14.3)/(14.6), the CSV columns, the half-step error estimate, and the scene's plant
+// and controller for the run modes.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "firmware/platform/posix/monotonic_clock.hpp"
+#include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/running_stats.hpp"
+#include "sim/analysis/window_mean.hpp"
+#include "tools/devices/monorail/monorail_curve.hpp"
+#include "tools/devices/monorail/monorail_scene.hpp"
+#include "tools/run/error_estimate_report.hpp"
+
+namespace gyrostab::tools {
+namespace {
+
+using Plant = plants::MonorailPlant;
+// Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
+using Controller = firmware::BasicMonorailController<firmware::posix::MonotonicClock>;
+
+const std::vector<std::string>& columns() {
+  static const std::vector<std::string> c{
+      "tilt_rad",       "case_angle_rad",        "tilt_rate_rad_s", "case_rate_rad_s", "Omega3_rad_s",
+      "gust_moment_Nm", "centrifugal_moment_Nm", "motor_torque_Nm", "status_bits"};
+  return c;
+}
+
+nlohmann::json json_of(const std::optional<double>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json();
+}
+
+// Where a steady lean is measured: the last second of a constant load (the gust's plateau, the curve's
+// constant part), clipped to the scene's duration; inactive if there is no such plateau.
+struct LeanWindow {
+  bool active{false};
+  double from_s{0.0}, to_s{0.0};
+};
+
+LeanWindow plateau_window(double plateau_from, double plateau_to, double duration_s) {
+  LeanWindow w;
+  w.to_s = std::min(plateau_to, duration_s);
+  w.from_s = std::max(plateau_from, w.to_s - 1.0);
+  w.active = std::isfinite(plateau_from) && w.to_s > w.from_s;
+  return w;
+}
+
+class MonorailRun {
+ public:
+  explicit MonorailRun(const MonorailScene& s)
+      : s_(s),
+        plant_(s.plant, s.loop.plant_timing()),
+        settle_tick_(tick_at(s.settle_s)),
+        window_(first_load_tick(), static_cast<std::int64_t>(1.0 / s.loop.tick_s())) {
+    const motion::Gust& g = s.plant.track.gust;
+    const motion::CurveProfile& c = s.plant.track.curve;
+    gust_window_ = g.M1 != 0.0
+                       ? plateau_window(g.start_s + g.rise_s, g.start_s + g.duration_s, s.loop.duration_s)
+                       : LeanWindow{};
+    curve_window_ = c.Omega3 != 0.0 ? plateau_window(c.start_s + c.transition_s, c.end_s, s.loop.duration_s)
+                                    : LeanWindow{};
+    set_window(gust_window_, gust_tilt_, gust_case_);
+    set_window(curve_window_, curve_tilt_, curve_case_);
+  }
+
+  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const msg::ActuatorFrame& cmd) {
+    last_ = cmd;
+    plant_.actuate(cmd);
+  }
+  void advance(std::int64_t tick) {
+    const Plant::HeldInputs in = plant_.held_inputs();
+    window_.before_tick(tick, plant_.state(), in);
+    plant_.advance(tick);
+    window_.after_tick(tick, plant_.state());
+    const std::int64_t now = tick + 1;  // the state is at the start of tick + 1
+    const double phi = plant_.tilt_rad(), beta = plant_.case_angle_rad();
+    if (now >= settle_tick_) tilt_.add(phi);
+    case_peak_ = std::fmax(case_peak_, std::fabs(beta));
+    torque_peak_ = std::fmax(torque_peak_, std::fabs(in.command_Nm));
+    gust_tilt_.add(now, phi);
+    gust_case_.add(now, beta);
+    curve_tilt_.add(now, phi);
+    curve_case_.add(now, beta);
+    if (overturned_tick_ < 0 && plant_.overturned()) overturned_tick_ = now;
+    ticks_ = now;
+  }
+  bool finite() const { return plant_.finite(); }
+
+  static constexpr int kGuardedStates = Plant::kGuardedStates;
+  static const char* state_name(int i) { return Plant::state_name(i); }
+  double state_value(int i) const { return plant_.state_value(i); }
+
+  void record(double* row) const {
+    const double t =
+        1e-9 * static_cast<double>((static_cast<std::int64_t>(last_.tick) + 1) * s_.loop.tick_ns);
+    row[0] = plant_.tilt_rad();
+    row[1] = plant_.case_angle_rad();
+    row[2] = plant_.tilt_rate_rad_s();
+    row[3] = plant_.case_rate_rad_s();
+    row[4] = plant_.Omega3_rad_s(t);
+    row[5] = plant_.gust_moment_Nm(t);
+    row[6] = plant_.centrifugal_moment_Nm(t);
+    row[7] = last_.gimbal_torque_Nm[msg::kAxis2];
+    row[8] = static_cast<double>(last_.status);
+  }
+
+  nlohmann::json figures() const {
+    const models::MonorailParams& car = s_.plant.car;
+    const motion::MonorailTrack& track = s_.plant.track;
+    const firmware::MonorailMotorParams& law = s_.controller.law;
+    const double d_total = law.d + law.d_mechanical;
+    const double W = track.curve.Omega3;
+    const firmware::MonorailGainWindow straight = firmware::monorail_gain_window(law);
+    const firmware::MonorailGainWindow curve = firmware::monorail_gain_window(law_in_curve(law, W));
+    const double tick_s = s_.loop.tick_s();
+    return {
+        {"tilt_rms_rad", tilt_.rms()},
+        {"tilt_max_rad", tilt_.peak},
+        {"case_angle_max_rad", case_peak_},
+        {"motor_torque_max_Nm", torque_peak_},
+        {"k_Nm_per_rad", law.k},
+        {"k_lo_Nm_per_rad", straight.k_min},
+        {"k_hi_Nm_per_rad", straight.k_max},
+        {"omega_P_rad_s", straight.omega_P},
+        {"omega_N_rad_s", straight.omega_N},
+        {"decay_rate_per_s_predicted", -max_real_root(car, law.k, d_total, 0.0)},
+        {"curve_Omega3_rad_s", W},
+        {"curve_H_Omega3_Nm_per_rad", car.H * W},
+        {"curve_radius_m", W != 0.0 && track.speed_m_s > 0.0 ? nlohmann::json(track.speed_m_s / std::fabs(W))
+                                                             : nlohmann::json()},
+        // (14.6)'s necessary condition; violated by (14.7) c > HΩ3 > q.
+        {"curve_condition_14_7_holds", (car.c - car.H * W) * (car.q - car.H * W) > 0.0},
+        {"curve_k_lo_Nm_per_rad", curve.gyro_strong_enough ? nlohmann::json(curve.k_min) : nlohmann::json()},
+        {"curve_k_hi_Nm_per_rad", curve.gyro_strong_enough ? nlohmann::json(curve.k_max) : nlohmann::json()},
+        {"curve_decay_rate_per_s_predicted", -max_real_root(car, law.k, d_total, W)},
+        {"gust_lean_rad", json_of(gust_tilt_.mean())},
+        {"gust_lean_rad_predicted", predicted_lean(gust_window_)},
+        {"gust_case_angle_rad", json_of(gust_case_.mean())},
+        {"gust_case_angle_rad_predicted", predicted_case_angle(gust_window_)},
+        {"curve_lean_rad", json_of(curve_tilt_.mean())},
+        {"curve_lean_rad_predicted", predicted_lean(curve_window_)},
+        {"curve_case_angle_rad", json_of(curve_case_.mean())},
+        {"curve_case_angle_rad_predicted", predicted_case_angle(curve_window_)},
+        {"overturned", overturned_tick_ >= 0},
+        {"overturned_at_s", overturned_tick_ >= 0
+                                ? nlohmann::json(static_cast<double>(overturned_tick_) * tick_s)
+                                : nlohmann::json()},
+        {"statistics_from_s", s_.settle_s},
+        {"ticks", ticks_}};
+  }
+
+  // report.json "error_estimate": 1 s from the first load (the gust's or the curve's start, else t = 0; the
+  // run's middle if that is earlier), where the car and the case move most.
+  nlohmann::json error_estimate() const {
+    const auto apply = [](Plant::Dynamics& p, const Plant::HeldInputs& in) {
+      p.command_Nm = in.command_Nm;
+      p.brake_Nms = in.brake_Nms;
+    };
+    return error_estimate_json<4>(
+        window_.estimate<dynamics::Rk4>(plant_.dynamics(), apply, s_.loop.tick_ns, s_.loop.substeps, 4),
+        {"tilt_rad", "case_angle_rad", "tilt_rate_rad_s", "case_rate_rad_s"},
+        "none watched: gust, curve, motor and brake act");
+  }
+
+ private:
+  std::int64_t tick_at(double t_s) const {
+    if (!std::isfinite(t_s)) return std::numeric_limits<std::int64_t>::max();
+    return static_cast<std::int64_t>(std::llround(t_s / s_.loop.tick_s()));
+  }
+  void set_window(const LeanWindow& w, analysis::WindowMean& tilt, analysis::WindowMean& case_angle) const {
+    tilt.from = case_angle.from = w.active ? tick_at(w.from_s) : 0;
+    tilt.to = case_angle.to = w.active ? tick_at(w.to_s) : 0;
+  }
+  std::int64_t first_load_tick() const {
+    const motion::Gust& g = s_.plant.track.gust;
+    const motion::CurveProfile& c = s_.plant.track.curve;
+    double t = std::numeric_limits<double>::infinity();
+    if (g.M1 != 0.0) t = std::min(t, g.start_s);
+    if (c.Omega3 != 0.0) t = std::min(t, c.start_s);
+    if (!std::isfinite(t)) t = 0.0;
+    return std::min(tick_at(t), s_.loop.ticks() / 2);
+  }
+
+  // Small-angle steady state of (14.6) with the law M2 = k (φ + tilt bias) − d β' under the window's constant
+  // roll moment M1 (gust + c v Ω3 / g), at the window's middle: A φ'' + Hβ' + (HΩ3 − c) φ = M1 gives
+  // φ = −M1 / (c − HΩ3) — the car leans against the moment, whatever the gains — and
+  // B β'' + ... + (HΩ3 − q) β − k φ_measured = 0 gives β = −k (φ + bias) / (q − HΩ3).
+  static double window_time(const LeanWindow& w) { return 0.5 * (w.from_s + w.to_s); }
+  nlohmann::json predicted_lean(const LeanWindow& w) const {
+    if (!w.active) return nlohmann::json();
+    const models::MonorailParams& car = s_.plant.car;
+    const double t = window_time(w), W = s_.plant.track.curve(t);
+    const double M1 = s_.plant.track.gust(t) + car.c * plant_.lateral_g(t);
+    return -M1 / (car.c - car.H * W);
+  }
+  nlohmann::json predicted_case_angle(const LeanWindow& w) const {
+    if (!w.active) return nlohmann::json();
+    const models::MonorailParams& car = s_.plant.car;
+    const double t = window_time(w), W = s_.plant.track.curve(t);
+    const double phi = predicted_lean(w).get<double>();
+    return -s_.controller.law.k * (phi + s_.plant.sensors.tilt_bias_rad) / (car.q - car.H * W);
+  }
+
+  const MonorailScene& s_;
+  Plant plant_;
+  std::int64_t settle_tick_;
+  LeanWindow gust_window_, curve_window_;
+  analysis::WindowMean gust_tilt_, gust_case_, curve_tilt_, curve_case_;
+  msg::ActuatorFrame last_{};
+  analysis::RunningStats tilt_;
+  double case_peak_{0.0}, torque_peak_{0.0};
+  std::int64_t overturned_tick_{-1};
+  std::int64_t ticks_{0};
+  analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
+};
+
+class MonorailDeviceScene final : public DeviceScene {
+ public:
+  explicit MonorailDeviceScene(std::unique_ptr<MonorailScene> s) : s_(std::move(s)) {}
+
+  const LoopConfig& loop() const override { return s_->loop; }
+  std::vector<std::string> columns() const override { return tools::columns(); }
+  // The law's torque limit on both axes; no voltage limit (a torque-mode drive: the voltages are unused).
+  hil::ActuatorLimits actuator_limits() const override {
+    hil::ActuatorLimits l;
+    l.torque_Nm[0] = l.torque_Nm[1] = s_->controller.law.torque_limit_Nm;
+    l.from_scene = true;
+    return l;
+  }
+  // The car lies on the ground at |φ| = π/2 (sim/plants/car_on_track.hpp); the case has no end stops.
+  nlohmann::json limits() const override {
+    return {{"motor_torque_limit_Nm", s_->controller.law.torque_limit_Nm},
+            {"tilt_overturned_rad", 0.5 * std::numbers::pi}};
+  }
+  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
+    return make_plant_port<MonorailRun>(*s_);
+  }
+  std::unique_ptr<ControllerPort> make_controller() const override {
+    return make_controller_port<Controller>(s_->controller);
+  }
+
+ private:
+  std::unique_ptr<MonorailScene> s_;
+};
+
+}  // namespace
+
+std::unique_ptr<DeviceScene> make_monorail_scene(std::unique_ptr<MonorailScene> s) {
+  return std::make_unique<MonorailDeviceScene>(std::move(s));
+}
+
+}  // namespace gyrostab::tools

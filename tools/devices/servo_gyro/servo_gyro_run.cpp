@@ -1,0 +1,190 @@
+// What a servo gyro run reports: the plant of sim/plants/servo_gyro_plant.hpp with its meters — over the
+// whole drive revolutions after the settling time, the oscillator amplitude α_A and phase φ, the torque peaks
+// (M1^KR)max and (M2)max of the applied motor torque and their ratio, the torque amplification, beside the
+// book's 1/α_A (14.44) and the general 2/(α_A(1 + |sin φ|)) of sim/models/servo_gyro.hpp; the same ratio from
+// the harmonic content (noise-free); the rate loop's tracking; motor power against the dissipation — the CSV
+// columns, the half-step error estimate, and the scene's plant and controller for the run modes.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "firmware/platform/posix/monotonic_clock.hpp"
+#include "sim/analysis/half_step_window.hpp"
+#include "tools/devices/servo_gyro/servo_gyro_drive_sums.hpp"
+#include "tools/devices/servo_gyro/servo_gyro_scene.hpp"
+#include "tools/run/error_estimate_report.hpp"
+
+namespace gyrostab::tools {
+namespace {
+
+using Plant = plants::ServoGyroPlant;
+// Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
+using Controller = firmware::BasicServoGyroController<firmware::posix::MonotonicClock>;
+
+const std::vector<std::string>& columns() {
+  static const std::vector<std::string> c{"alpha_rad",  "alpha_rate_rad_s", "drive_rate_rad_s",
+                                          "M1_gyro_Nm", "motor_torque_Nm",  "status_bits"};
+  return c;
+}
+
+class ServoGyroRun {
+ public:
+  explicit ServoGyroRun(const ServoGyroScene& s)
+      : s_(s),
+        plant_(s.plant, s.loop.plant_timing()),
+        settle_tick_(static_cast<std::int64_t>(std::llround(s.settle_s / s.loop.tick_s()))),
+        window_(std::min(settle_tick_, s.loop.ticks() / 2),
+                static_cast<std::int64_t>(1.0 / s.loop.tick_s())) {}
+
+  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const msg::ActuatorFrame& cmd) {
+    last_ = cmd;
+    plant_.actuate(cmd);
+  }
+  void advance(std::int64_t tick) {
+    const double M2 = plant_.axis2_torque_Nm();
+    const Plant::HeldInputs in = plant_.held_inputs();
+    window_.before_tick(tick, plant_.state(), in);
+    plant_.advance(tick);
+    window_.after_tick(tick, plant_.state());
+    ticks_ = tick + 1;
+    if (ticks_ < settle_tick_) return;
+    if (!started_) {
+      started_ = true;
+      beta_start_ = plant_.beta_rad();
+    }
+    // A completed revolution: the samples so far cover whole revolutions uniformly; keep them.
+    const auto revs = static_cast<std::int64_t>(
+        std::floor(std::fabs(plant_.beta_rad() - beta_start_) / (2.0 * std::numbers::pi)));
+    if (revs > revolutions_) {
+      revolutions_ = revs;
+      done_ = run_;
+    }
+    const auto& g = s_.plant.gyro;
+    run_.add(plant_.alpha_rad(), plant_.beta_rad(), plant_.alpha_rate_rad_s(), plant_.beta_rate_rad_s(),
+             plant_.gyro_torque_axis1_Nm(), M2, s_.controller.reference, g.d1, g.d2);
+  }
+  bool finite() const { return plant_.finite(); }
+
+  static constexpr int kGuardedStates = Plant::kGuardedStates;
+  static const char* state_name(int i) { return Plant::state_name(i); }
+  double state_value(int i) const { return plant_.state_value(i); }
+
+  void record(double* row) const {
+    row[0] = plant_.alpha_rad();
+    row[1] = plant_.alpha_rate_rad_s();
+    row[2] = plant_.beta_rate_rad_s();
+    row[3] = plant_.gyro_torque_axis1_Nm();
+    row[4] = last_.gimbal_torque_Nm[msg::kAxis2];
+    row[5] = static_cast<double>(last_.status);
+  }
+
+  nlohmann::json figures() const {
+    const DriveSums& d = done_;
+    nlohmann::json f{{"drive_rate_reference_rad_s", s_.controller.reference},
+                     {"revolutions", revolutions_},
+                     {"statistics_from_s", s_.settle_s},
+                     {"ticks", ticks_}};
+    const char* measured[] = {"alpha_A_rad",
+                              "phase_rad",
+                              "M1_max_Nm",
+                              "M2_max_Nm",
+                              "torque_gain",
+                              "torque_gain_book",
+                              "torque_gain_general",
+                              "M1_amplitude_harmonic_Nm",
+                              "M2_max_harmonic_Nm",
+                              "torque_gain_harmonic",
+                              "drive_rate_mean_rad_s",
+                              "drive_rate_error_max_rad_s",
+                              "motor_power_W",
+                              "dissipation_W"};
+    if (d.n == 0) {  // no whole revolution after settling (a short run)
+      for (const char* key : measured) f[key] = nullptr;
+      return f;
+    }
+    const double n = static_cast<double>(d.n);
+    const double alpha_A = 2.0 / n * std::hypot(d.alpha_cos, d.alpha_sin);
+    const double phase = std::atan2(d.alpha_sin, d.alpha_cos);
+    const double m2_harmonic = std::fabs(d.m2_mean / n) + 2.0 / n * std::hypot(d.m2_cos2, d.m2_sin2);
+    const double m1_harmonic = 2.0 / n * std::hypot(d.m1_cos, d.m1_sin);
+    f["alpha_A_rad"] = alpha_A;
+    f["phase_rad"] = phase;
+    f["M1_max_Nm"] = d.m1_peak;
+    f["M2_max_Nm"] = d.m2_peak;
+    f["torque_gain"] = d.m1_peak / d.m2_peak;
+    f["torque_gain_book"] = 1.0 / alpha_A;                                            // (14.44)
+    f["torque_gain_general"] = 2.0 / (alpha_A * (1.0 + std::fabs(std::sin(phase))));  // the model header's
+    f["M1_amplitude_harmonic_Nm"] = m1_harmonic;
+    f["M2_max_harmonic_Nm"] = m2_harmonic;
+    f["torque_gain_harmonic"] = m1_harmonic / m2_harmonic;
+    f["drive_rate_mean_rad_s"] = d.rate / n;
+    f["drive_rate_error_max_rad_s"] = d.rate_error_peak;
+    f["motor_power_W"] = d.motor_power / n;
+    f["dissipation_W"] = d.dissipation / n;
+    return f;
+  }
+
+  // report.json "error_estimate": 1 s of the steady drive from the end of the settling time (the run's middle
+  // if that is earlier).
+  nlohmann::json error_estimate() const {
+    const auto apply = [](Plant::Dynamics& p, const Plant::HeldInputs& in) {
+      p.command_Nm = in.command_Nm;
+      p.brake_Nms = in.brake_Nms;
+    };
+    return error_estimate_json<4>(
+        window_.estimate<dynamics::Rk4>(plant_.dynamics(), apply, s_.loop.tick_ns, s_.loop.substeps, 4),
+        {"alpha_rad", "beta_rad", "alpha_rate_rad_s", "beta_rate_rad_s"},
+        "none watched: the drive motor and friction act");
+  }
+
+ private:
+  const ServoGyroScene& s_;
+  Plant plant_;
+  std::int64_t settle_tick_;
+  msg::ActuatorFrame last_{};
+  bool started_{false};
+  double beta_start_{0.0};
+  std::int64_t revolutions_{0};
+  DriveSums run_{}, done_{};  // the sums so far, and at the last completed revolution
+  std::int64_t ticks_{0};
+  analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
+};
+
+class ServoGyroDeviceScene final : public DeviceScene {
+ public:
+  explicit ServoGyroDeviceScene(std::unique_ptr<ServoGyroScene> s) : s_(std::move(s)) {}
+
+  const LoopConfig& loop() const override { return s_->loop; }
+  std::vector<std::string> columns() const override { return tools::columns(); }
+  // The law's torque limit on both axes; no voltage limit (a torque-mode drive: the voltages are unused).
+  hil::ActuatorLimits actuator_limits() const override {
+    hil::ActuatorLimits l;
+    l.torque_Nm[0] = l.torque_Nm[1] = s_->controller.law.torque_limit_Nm;
+    l.from_scene = true;
+    return l;
+  }
+  nlohmann::json limits() const override {
+    return {{"motor_torque_limit_Nm", s_->controller.law.torque_limit_Nm}};
+  }
+  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
+    return make_plant_port<ServoGyroRun>(*s_);
+  }
+  std::unique_ptr<ControllerPort> make_controller() const override {
+    return make_controller_port<Controller>(s_->controller);
+  }
+
+ private:
+  std::unique_ptr<ServoGyroScene> s_;
+};
+
+}  // namespace
+
+std::unique_ptr<DeviceScene> make_servo_gyro_scene(std::unique_ptr<ServoGyroScene> s) {
+  return std::make_unique<ServoGyroDeviceScene>(std::move(s));
+}
+
+}  // namespace gyrostab::tools
