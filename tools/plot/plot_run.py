@@ -8,13 +8,15 @@ plot(run) -> matplotlib Figure (helpers: tools/plot/plot_lib.py). Without such a
 report.json) the generic figure is drawn: every column against time, grouped by unit suffix.
 Exit status 0 when signals.png was written; 1 with a one-line message on stderr when the run cannot be
 plotted (no or malformed signals.csv, ...). A device module that fails is reported on stderr (one line) and
-the generic figure is drawn instead.
+the generic figure is drawn instead; with GYROSTAB_PLOT_STRICT=1 (the tests) that failure exits 1, and a
+device figure that finds none of its columns says so on stderr.
 Runs with Debian's system interpreter, python3-matplotlib and python3-numpy (no pip).
 """
 import importlib.util
 import os
 import re
 import sys
+import traceback
 
 sys.dont_write_bytecode = True  # the source tree may be read-only; nothing to cache for a one-shot script
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -69,8 +71,15 @@ def main(argv):
                 fig = module.plot(run)
         except plot_lib.NothingToPlot as e:
             why = "%s: generic figure" % e
+            if os.environ.get("GYROSTAB_PLOT_STRICT") == "1":  # the tests: say that the device figure was not drawn
+                sys.stderr.write("%s: %s\n" % (PROG, why))
         except Exception as e:  # a bug in a device module must not cost the user the figure
-            sys.stderr.write("%s: the %s figure failed (%s); drew the generic figure\n" % (PROG, run.device, one_line(e)))
+            where = traceback.extract_tb(e.__traceback__)[-1]
+            what = "%s (%s:%d)" % (one_line(e), os.path.relpath(where.filename, HERE), where.lineno)
+            if os.environ.get("GYROSTAB_PLOT_STRICT") == "1":
+                sys.stderr.write("%s: the %s figure failed: %s\n" % (PROG, run.device, what))
+                return 1
+            sys.stderr.write("%s: the %s figure failed (%s); drew the generic figure\n" % (PROG, run.device, what))
             why = "the device figure failed: generic figure"
             plot_lib.plt.close("all")
     try:

@@ -34,7 +34,8 @@ def plot(run):
         rows.append(("dev", 1.2, False))
     if speed is not None or (hdg is not None and np.ptp(hdg) > 1e-6):
         rows.append(("veh", 0.7, False))
-    L = pl.Layout(run, rows, status_lanes=len(pl.active_bits(bits)))
+    L = pl.Layout(run, rows, status_lanes=len(pl.active_bits(bits)),
+                  right_in=0.7 if hdg is not None and np.ptp(hdg) > 1e-6 else 0.15)
     deg = pl.DEG
 
     if "tilt" in L.rows:

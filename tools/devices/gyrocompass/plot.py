@@ -58,7 +58,8 @@ def plot(run):
         rows.append(("swing", 0.6, False))
     if m1 is not None or m2 is not None:
         rows.append(("torque", 0.6, False))
-    L = pl.Layout(run, rows, zoom=zoom, zoom_label="the first manoeuvre", status_lanes=len(pl.active_bits(bits)))
+    L = pl.Layout(run, rows, zoom=zoom, zoom_label="the first manoeuvre", status_lanes=len(pl.active_bits(bits)),
+                  right_in=0.7 if moving and hdg is not None and np.ptp(hdg) > 1e-6 else 0.15)
     tf, tl = run.time
     deg = pl.DEG
 
