@@ -324,9 +324,10 @@ class Layout:
         height_in = min(max(total, 4.0), 15.0)
         self.fig = plt.figure(figsize=(WIDTH_IN, height_in), dpi=DPI)
         ncol = 2 if any_zoom else 1
-        gs = self.fig.add_gridspec(len(heights), ncol, height_ratios=heights,
-                                   width_ratios=list(width_ratios) if ncol == 2 else None,
-                                   **fixed_margins(height_in, len(heights), ncol, right_in))
+        self.margins = fixed_margins(height_in, len(heights), ncol, right_in)
+        self.gs = gs = self.fig.add_gridspec(len(heights), ncol, height_ratios=heights,
+                                             width_ratios=list(width_ratios) if ncol == 2 else None, **self.margins)
+        self.banners = []
         self.rows = {}
         self.zoom_label = zoom_label
         first_whole = first_zoom = None
@@ -378,8 +379,20 @@ class Layout:
                 group[-1].tick_params(labelbottom=True)
                 group[-1].set_xlabel("time [%s]" % tl, fontsize=9)
 
+    def banner(self, text):
+        """A red warning line under the title (the run did something no reader may miss); finish() makes room."""
+        self.banners.append(text)
+
     def finish(self):
-        """Shade the zoom window on the whole-run axes and title the zoom column."""
+        """Place the banners, shade the zoom window on the whole-run axes and title the zoom column."""
+        if self.banners:
+            h = self.fig.get_figheight()
+            lines = sum(b.count("\n") + 1 for b in self.banners)
+            self.fig.text(0.01, 1 - 0.36 / h, "\n".join(self.banners), ha="left", va="top", fontsize=9.5,
+                          color="darkred", fontweight="bold", linespacing=1.25)
+            top = self.margins["top"] - 0.2 * lines / h
+            hspace = self.margins["hspace"] * (self.margins["top"] - self.margins["bottom"]) / (top - self.margins["bottom"])
+            self.gs.update(top=top, hspace=hspace)
         if self.zoom is None or self.first_zoom is None:
             return self.fig
         tf = self.run.time[0]
@@ -627,6 +640,20 @@ def status_strip(layout, run, bits, names=None, zoom=None):
                         bbox=dict(boxstyle="square,pad=0.15", fc="white", ec="none", alpha=0.8))
     ylabel(row.whole, "status")
     return always
+
+
+def status_banner(layout, always, names=None):
+    """A banner for the status bits held through the whole run (status_strip's return): the safe state said
+    in words (the drives are off, the loop is open), else the bits' names."""
+    if not always:
+        return
+    names = {**STATUS_BITS, **(names or {})}
+    others = [names.get(b, "bit %d" % b) for b in always if b != 9]
+    if 9 in always:
+        layout.banner("controller in the SAFE STATE for the whole run%s: drives off, the loop is open"
+                      % (" (" + ", ".join(others) + ")" if others else ""))
+    else:
+        layout.banner("set for the whole run: " + ", ".join(others))
 
 
 def _lane_color(b):

@@ -108,9 +108,7 @@ def plot(run):
                                                                 pl.num(float(np.nanmax(lat)))), loc="upper left",
                     size=7.5)
 
-    always = pl.status_strip(L, run, bits)
-    if always:
-        pl.warn(L.top, "set for the whole run: " + ", ".join(pl.STATUS_BITS.get(b, "bit %d" % b) for b in always))
+    pl.status_banner(L, pl.status_strip(L, run, bits))
     model = run.figures.get("model")
     pl.title(L.fig, run, "gyro pendulum" + (" (%s model)" % model if isinstance(model, str) else ""), None)
     return L.finish()

@@ -103,7 +103,7 @@ def plot(run):
                 text += "\nthe law is not the linear one: the book's prediction does not apply"
             pl.note(ax, text, loc="lower right", size=7.5)
         pl.ylabel(ax, "tilt [deg]")
-        pl.legend(ax, loc="upper right", ncol=3)
+        pl.legend(ax, loc="lower center", ncol=2)
         lo, hi = ax.get_ylim()
         ax.set_ylim(lo - 0.45 * (hi - lo), hi + 0.25 * (hi - lo))  # room for the notes
 
@@ -126,19 +126,16 @@ def plot(run):
         ax = L["torque"].whole
         lim = run.limit("torquer_limit_Nm")
         peak = pl._maxabs(m1, m2)
-        f, unit = pl.si_unit("N m", maxabs=max(peak, lim or 0.0))
+        f, unit = pl.si_unit("N m", maxabs=max(peak, lim) if lim and peak * 4 >= lim else peak)
         if m1 is not None:
             pl.plot_t(ax, run, m1 * f, color=pl.C_MAIN, lw=0.8, label="M1")
         if m2 is not None:
             pl.plot_t(ax, run, m2 * f, color=pl.C_SECOND, lw=0.8, label="M2")
         pl.limit_lines(ax, lim, "torquer limit", f, peak, unit=" " + unit, base_unit="N m")
         pl.ylabel(ax, "erection torque\n[%s]" % unit)
-        pl.legend(ax, loc="upper right", ncol=2)
+        pl.legend(ax, loc="lower left", ncol=2)
 
-    always = pl.status_strip(L, run, bits, NAMES)
-    if always:
-        pl.warn(L.top, "set for the whole run: " + ", ".join({**pl.STATUS_BITS, **NAMES}.get(b, "bit %d" % b)
-                                                             for b in always))
+    pl.status_banner(L, pl.status_strip(L, run, bits, NAMES), NAMES)
     pl.title(L.fig, run, "gyro vertical (aircraft)", None)
     pl.limits_missing_note(L.fig, run, ["torquer_limit_Nm"])
     return L.finish()

@@ -193,9 +193,7 @@ def plot(run):
         pl.ylabel(ax, "torquer\n[%s]" % unit)
         pl.legend(ax, loc="upper right", ncol=2)
 
-    always = pl.status_strip(L, run, bits)
-    if always:
-        pl.warn(L.top, "set for the whole run: " + ", ".join(pl.STATUS_BITS.get(b, "bit %d" % b) for b in always))
+    pl.status_banner(L, pl.status_strip(L, run, bits))
     where = "under way" if moving else "fixed base"
     pl.title(L.fig, run, "gyrocompass (%s)" % where, None)
     pl.limits_missing_note(L.fig, run, ["torquer_limit_Nm"])

@@ -134,9 +134,7 @@ def plot(run):
         pl.note(ax, "what the accelerometers see: the vehicle's manoeuvres", loc="upper left", size=7.5)
         pl.legend(ax, loc="upper right", ncol=2)
 
-    always = pl.status_strip(L, run, bits)
-    if always:
-        pl.warn(L.top, "set for the whole run: " + ", ".join(pl.STATUS_BITS.get(b, "bit %d" % b) for b in always))
+    pl.status_banner(L, pl.status_strip(L, run, bits))
     axes = run.fig("axes")
     what = "inertial platform" + (" (%d-axis)" % axes if axes else "")
     pl.title(L.fig, run, what, None)

@@ -109,12 +109,12 @@ def plot(run):
             pl.note(r.whole, "\n".join(lines), loc="lower right", size=7.5)
         if run.figures.get("overturned"):
             at = run.fig("overturned_at_s")
-            pl.warn(r.whole, "the car OVERTURNED at t = %s s" % pl.num(at) if at is not None else "the car OVERTURNED")
+            L.banner("the car OVERTURNED at t = %s s" % pl.num(at) if at is not None else "the car OVERTURNED")
             if at is not None:
                 for row in L.rows.values():
                     pl.vline(row.whole, at * tf, color=pl.C_HARD, ls="-", lw=1.5)
         elif run.figures.get("curve_condition_14_7_holds") is False:
-            pl.warn(r.whole, "(14.7) does not hold in the curve: c > HΩ3 > q")
+            L.banner("(14.7) does not hold in the curve: c > HΩ3 > q, the car overturns for every gain")
         pl.legend(r.whole, loc="upper right")
 
     if "case" in L.rows:
@@ -156,9 +156,7 @@ def plot(run):
                     loc="upper left", size=7.5)
         pl.legend(r.whole, loc="upper right", ncol=2)
 
-    always = pl.status_strip(L, run, bits, None, zoom)
-    if always:
-        pl.warn(L.top, "set for the whole run: " + ", ".join(pl.STATUS_BITS.get(b, "bit %d" % b) for b in always))
+    pl.status_banner(L, pl.status_strip(L, run, bits, None, zoom))
     pl.title(L.fig, run, "gyro monorail car", None)
     pl.limits_missing_note(L.fig, run, ["motor_torque_limit_Nm"])
     return L.finish()

@@ -126,7 +126,8 @@ def plot(run):
             pl.plot_pair(r, run, platform * f, zoom, color=pl.C_SECOND, lw=0.9, label="platform")
         pred = run.fig("steady_alpha_rad_predicted")
         meas = run.fig("steady_alpha_rad")
-        pl.hline(r.whole, pred * f if pred is not None else None, "book (14.21)")
+        pl.hline(r.whole, pred * f if pred is not None else None, "book (14.21)",
+                 near=alpha * f if alpha is not None else None)
         if r.zoom is not None and alpha is not None and pred is not None:
             pl.hline(r.zoom, pred * f, "book (14.21)", near=alpha[run.window(*zoom)] * f)
         lines = []
@@ -152,8 +153,8 @@ def plot(run):
             lines.append("periodic drift over %s ticks: max departure %s (bound %s rad): %s" % (
                 pl.num(dr.get("compared_ticks")), pl.num(worst), pl.num(dr.get("bound_rad")),
                 "within" if dr.get("within_bound") else "OUTSIDE"))
-        if lines:
-            pl.note(r.whole, "\n".join(lines), loc="lower right", size=7.5)
+        if lines:  # upper left: before the M2 step the platform is still at rest there
+            pl.note(r.whole, "\n".join(lines), loc="upper left", size=7.5)
         pl.ylabel(r.whole, "α platform [%s]" % u[2])
         if alpha is not None and platform is not None:
             pl.legend(r.whole, loc="center right")
@@ -165,7 +166,7 @@ def plot(run):
         pl.plot_pair(r, run, beta * f, zoom, color=pl.C_MAIN, lw=0.9, label="β inner gimbal")
         pred = run.fig("steady_beta_rad_predicted")
         meas = run.fig("steady_beta_rad")
-        pl.hline(r.whole, pred * f if pred is not None else None, "book (14.21) M1/k1")
+        pl.hline(r.whole, pred * f if pred is not None else None, "book (14.21) M1/k1", near=beta * f)
         if r.zoom is not None and pred is not None:
             pl.hline(r.zoom, pred * f, "book (14.21)", near=beta[run.window(*zoom)] * f)
         # Gimbal lock (β = ±90°, the coupling H cos β vanishes): a line if β comes within a few of its own
@@ -252,10 +253,12 @@ def plot(run):
                                 (m1, "M1 motor", pl.C_MAIN, "-"), (m2, "M2 motor", pl.C_SECOND, "-")):
             if y is not None:
                 pl.plot_pair(r, run, y * f, zoom, color=c, ls=ls, lw=0.9 if ls == "-" else 0.8, label=label)
-        mpeak = pl._maxabs(m1, m2)
-        for ax in r.axes:
-            pl.limit_lines(ax, lim, "command limit", f, mpeak, unit=" " + unit, below=True, base_unit="N m")
-            pl.limit_lines(ax, drive_peak, "drive peak", f, mpeak, unit=" " + unit, color="tab:brown", ls=":")
+        mpeak = max(pl._maxabs(m1, m2), run.fig("motor1_torque_peak_Nm", 0.0), run.fig("motor2_torque_peak_Nm", 0.0))
+        for ax in r.axes:  # lines only if the torques use at least 40 % of the limit, else a note
+            pl.limit_lines(ax, lim, "command limit", f, mpeak, unit=" " + unit, below=True, base_unit="N m",
+                           max_ratio=2.5)
+            pl.limit_lines(ax, drive_peak, "drive peak", f, mpeak, unit=" " + unit, color="tab:brown", ls=":",
+                           base_unit="N m", max_ratio=2.5)
         pl.ylabel(r.whole, "torque [%s]" % unit)
         pl.legend(r.whole, loc="upper right", ncol=2)
         tp = [run.fig("motor1_torque_peak_Nm"), run.fig("motor2_torque_peak_Nm")]
@@ -289,14 +292,7 @@ def plot(run):
         pl.ylabel(r.whole, "voltage [V]")
         pl.legend(r.whole, loc="upper right", ncol=2)
 
-    always = pl.status_strip(L, run, bits, None, zoom)
-    if always:
-        names = [pl.STATUS_BITS.get(b, "bit %d" % b) for b in always]
-        msg = "status held for the whole run: " + ", ".join(names)
-        if 9 in always:
-            msg = "controller in the SAFE STATE for the whole run (%s):\nthe motors are off, the loop is open" % (
-                ", ".join(n for b, n in zip(always, names) if b != 9))
-        pl.warn(L.top, msg)
+    pl.status_banner(L, pl.status_strip(L, run, bits, None, zoom))
 
     comps = run.block("plant").get("components") or []
     sub = "; ".join(c for c in comps[1:] if isinstance(c, str))

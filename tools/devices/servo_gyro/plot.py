@@ -98,10 +98,7 @@ def plot(run):
             pl.note(r.whole, "after settling: mean %s rad/s, max |β' − Ω| %s rad/s" % (pl.num(mean, 6), pl.num(err)),
                     loc="lower right", size=7.5)
 
-    always = pl.status_strip(L, run, bits, NAMES, zoom)
-    if always:
-        pl.warn(L.top, "set for the whole run: " + ", ".join({**pl.STATUS_BITS, **NAMES}.get(b, "bit %d" % b)
-                                                             for b in always))
+    pl.status_banner(L, pl.status_strip(L, run, bits, NAMES, zoom), NAMES)
     pl.title(L.fig, run, "servo gyro (gyroscopic vibrator drive)", None)
     pl.limits_missing_note(L.fig, run, ["motor_torque_limit_Nm"])
     return L.finish()

@@ -102,7 +102,7 @@ def plot(run):
         r = L["torque"]
         lim = run.limit("precession_torque_limit_Nm")
         peak = run.fig("precession_torque_max_Nm", float(np.nanmax(np.abs(torque))))
-        f, unit = pl.si_unit("N m", maxabs=max(peak, lim or 0.0))
+        f, unit = pl.si_unit("N m", maxabs=max(peak, lim) if lim and peak * 8 >= lim else peak)
         pl.plot_pair(r, run, torque * f, zoom, color=pl.C_MAIN, lw=0.8)
         for ax in r.axes:
             pl.limit_lines(ax, lim, "torque limit", f, peak, unit=" " + unit, max_ratio=8.0, base_unit="N m")
@@ -123,15 +123,13 @@ def plot(run):
             pl.note(r.whole, "excitation, rms %s %s" % (pl.num(rms * f), unit), loc="upper left", size=7.5)
         pl.symmetric_ylim(r.whole, 1.15)
 
-    always = pl.status_strip(L, run, bits, NAMES, zoom)
-    if always:
-        pl.warn(L.top, "set for the whole run: " + ", ".join({**pl.STATUS_BITS, **NAMES}[b] for b in always))
+    pl.status_banner(L, pl.status_strip(L, run, bits, NAMES, zoom), NAMES)
 
     comps = [c for c in run.block("plant").get("components") or [] if isinstance(c, str)]
-    if any("H = 0" in c for c in comps):
-        pl.warn(L.top, "rotor without spin (H = 0): no gyroscopic coupling, so no roll reduction", loc="lower center")
     sea = next((c for c in comps if c.startswith(("regular sea", "irregular sea"))), None)
     pl.title(L.fig, run, "ship roll damper", sea, L.top)
+    if any("H = 0" in c for c in comps):
+        L.banner("rotor without spin (H = 0): no gyroscopic coupling, so no roll reduction")
     pl.limits_missing_note(L.fig, run, LIMIT_KEYS if "precession_soft_limit_rad" in run.limits or not run.limits
                            else LIMIT_KEYS[1:])
     return L.finish()
