@@ -521,6 +521,29 @@ def note(ax, text, loc="upper left", size=8, color="black", bold=False, alpha=0.
                    bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="0.7", alpha=alpha))
 
 
+def free_corner(ax, run, arrays, candidates=("upper left", "lower right", "lower left", "upper right")):
+    """The corner of ax (among candidates, in order of preference) where the fewest samples of arrays (in the
+    axis' units, against run.t) fall: a box there hides the least data. Call after the y limits are final."""
+    lo, hi = ax.get_ylim()
+    x0, x1 = (v / run.time[0] for v in ax.get_xlim())
+    span_y, span_x = (hi - lo) or 1.0, (x1 - x0) or 1.0
+    best, score = candidates[0], None
+    for loc in candidates:
+        top, left = loc.startswith("upper"), loc.endswith("left")
+        n = 0
+        for y in arrays:
+            if y is None:
+                continue
+            fx = (run.t - x0) / span_x
+            fy = (y - lo) / span_y
+            inx = fx <= 0.45 if left else fx >= 0.55
+            iny = fy >= 0.7 if top else fy <= 0.3
+            n += int(np.count_nonzero(inx & iny))
+        if score is None or n < score:
+            best, score = loc, n
+    return best
+
+
 def warn(ax, text, loc="upper center"):
     """A red warning box (the run did something the figure must not let the reader miss)."""
     return note(ax, text, loc=loc, size=9, color="darkred", bold=True, alpha=0.92)

@@ -153,9 +153,10 @@ def plot(run):
             lines.append("periodic drift over %s ticks: max departure %s (bound %s rad): %s" % (
                 pl.num(dr.get("compared_ticks")), pl.num(worst), pl.num(dr.get("bound_rad")),
                 "within" if dr.get("within_bound") else "OUTSIDE"))
-        if lines:  # upper left: before the M2 step the platform is still at rest there
-            pl.note(r.whole, "\n".join(lines), loc="upper left", size=7.5)
         pl.ylabel(r.whole, "α platform [%s]" % u[2])
+        if lines:
+            pl.note(r.whole, "\n".join(lines), size=7.5, loc=pl.free_corner(
+                r.whole, run, [y * f for y in (alpha, platform) if y is not None]))
         if alpha is not None and platform is not None:
             pl.legend(r.whole, loc="center right")
 
@@ -184,8 +185,8 @@ def plot(run):
                         loc="upper right", size=8, color=pl.C_HARD)
         if meas is not None:
             pl.note(r.whole, "β at the end %s · book steady (14.21) %s" % (
-                pl.fmt_angle(meas, u), pl.fmt_angle(pred, u) if pred is not None else "n/a"), loc="lower right",
-                size=7.5)
+                pl.fmt_angle(meas, u), pl.fmt_angle(pred, u) if pred is not None else "n/a"),
+                loc=pl.free_corner(r.whole, run, [beta * f], ("lower right", "upper left", "lower left")), size=7.5)
         op = run.fig("operating_point_beta_rad")
         if op is not None:
             pl.note(r.whole, "operating point β₀ = %s: coupling H cos β₀" % pl.fmt_angle(op, u), loc="upper left",
@@ -237,10 +238,12 @@ def plot(run):
         bound = run.block("drift").get("bound_rad")
         if isinstance(bound, (int, float)):
             pl.limit_lines(r.whole, bound, "bound (two encoder counts)", f, pl._maxabs(*dev), unit=" " + unit,
-                           max_ratio=50.0)
+                           max_ratio=50.0, base_unit="rad")
         pl.ylabel(r.whole, "departure over\none period [%s]" % unit)
-        pl.note(r.whole, "periodic steady state: each sample against the one a forcing period T = %s s earlier "
-                "(from %s s)" % (pl.num(period), pl.num(start)), loc="upper left", size=7.5)
+        lo, hi = r.whole.get_ylim()
+        r.whole.set_ylim(lo, hi + 0.5 * (hi - lo))
+        pl.note(r.whole, "each sample against the one a forcing period T = %s s earlier (from %s s)"
+                % (pl.num(period), pl.num(start)), loc="upper left", size=7.5)
         pl.legend(r.whole, loc="upper right", ncol=2)
 
     if "torque" in L.rows:
