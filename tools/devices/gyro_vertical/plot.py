@@ -11,7 +11,6 @@ Rows (the whole flight; the manoeuvre segments of figures.segments shaded, turns
   status       event lanes of the status bits, only if one is ever set (cut-out, torquer limited)
 Limits (tools/plot/LIMITS.md): torquer_limit_Nm, turn_cutout_rad_s; absent, no line.
 """
-import numpy as np
 
 import plot_lib as pl
 
