@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("!--no-progress", run.progress, "no progress line on the terminal");
   run_cmd->add_option("--log", run.transport.log_path,
                       "record the bus as an LCM event log (docs/logs.md); SIGINT/SIGTERM stop at a tick boundary");
-  gyrostab::tools::add_link_options(run_cmd, run, gyrostab::tools::LinkSide::kRun);  // --transport lcm etc. (issue 4)
+  gyrostab::tools::add_link_options(run_cmd, run, gyrostab::tools::LinkSide::kRun);  // --transport lcm|can, the link options
 
   // Plant and controller as two processes over LCM (docs/transport.md).
   gyrostab::tools::RunRequest plant;
@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
   accuracy_cmd->add_flag("!--no-plot", accuracy.plot, "no work_precision.png");
   accuracy_cmd->add_flag("!--no-progress", accuracy.progress, "no progress line");
 
-  // The DBC file of the CAN bus (issue 7, docs/can.md): written from the frame map (hil/can/frame_map.hpp).
+  // The DBC file of the CAN bus (docs/can.md): written from the frame map (hil/can/frame_map.hpp).
   std::string dbc_out;
   CLI::App* dbc_cmd = app.add_subcommand(
       "dbc", "write the DBC file of the CAN FD bus (frame map: ids, lengths, signals, scaling, units, ranges)");
@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (run_cmd->parsed() && run.transport.transport == "can" && run.transport.can_if.empty()) {
-    run.transport.can_if = "vcan0";  // issue 7: CAN FD over SocketCAN, docs/can.md
+    run.transport.can_if = "vcan0";  // CAN FD over SocketCAN, docs/can.md
   }
   if (run_cmd->parsed() && (run.transport.transport == "lcm" || run.transport.transport == "can")) {
     return gyrostab::tools::run_process_pair(run);

@@ -15,7 +15,7 @@ int replay_log(RunRequest req) {
     req.scene_text.clear();
     return run_scene(req);
   }
-  if (can::looks_like_candump_log(req.transport.replay_log)) {  // a candump log of the CAN bus (issue 7)
+  if (can::looks_like_candump_log(req.transport.replay_log)) {  // a candump log of the CAN bus
     can::CandumpFile file;
     std::string error;
     if (!can::read_candump_file(req.transport.replay_log, file, error)) {

@@ -145,7 +145,7 @@ TEST_P(KineticDrift, MeanAzimuthRateMatchesMagnus4_67) {
   }
   ASSERT_GE(crossings, 390);
   const double measured = (alpha_last - alpha_first) / (t_last - t_first);
-  std::printf("H = %g, β0 = %g°, α_A = %g: drift %.5e rad/s, (4.67) %.5e, ratio %.5f, digest sim %.4e\n", c.H,
+  std::printf("H = %g, β0 = %g°, α_A = %g: drift %.5e rad/s, (4.67) %.5e, ratio %.5f, reference sim %.4e\n", c.H,
               c.beta0_deg, c.alpha_A, measured, predicted, measured / predicted, c.digest_sim);
   // (4.67) is the leading term in α_A; the reference simulations (table G1, docs/models/gimbal-gyro.md)
   // give ratios 1.001-1.003, growing with α_A (and the linear crossing location errs by ~(hω)²/8 of a

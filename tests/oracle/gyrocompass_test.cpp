@@ -327,7 +327,7 @@ double rolling_mean_alpha(double psi, double* predicted_exact, double* predicted
 TEST(GyrocompassOracle, RollingErrorOnIntercardinalCourses13_38) {
   double exact, book, a0;
   const double mean45 = rolling_mean_alpha(kPi / 4, &exact, &book, &a0);
-  std::printf("rolling error at 45 deg: %.6f rad (exact balance %.6f, book (13.38) %.6f, digest 0.0346)\n",
+  std::printf("rolling error at 45 deg: %.6f rad (exact balance %.6f, book (13.38) %.6f, reference 0.0346)\n",
               mean45 - a0, exact, book);
   // Averaging over 200 whole roll periods of a response with a 2ω_s ripple of relative size
   // ω^E cosφ/(2ω_s) ≈ 4e-5, and the transient left after 20000 s (e^(−ζ ω_n t) = e^-17): tolerance 1e-4.

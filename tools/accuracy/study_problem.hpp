@@ -1,7 +1,7 @@
 // What the accuracy study integrates: a scene's plant as an ODE on the controller's tick grid, open loop,
 // with every input held (zero-order hold) over a tick exactly as the scene's closed-loop run held it, and
 // continuous disturbances (sea moment, base motion) as functions of t inside the right-hand side. The same
-// right-hand side and the same error measure serve every method, ours and the peers' (DESIGN §7).
+// right-hand side and the same error measure serve every method, ours and the peers' (docs/accuracy.md).
 //
 // A Problem provides
 //   static constexpr int kStateSize;  using State = Eigen::Matrix<double, kStateSize, 1>;

@@ -1,4 +1,4 @@
-// Per-tick cost of the power stabilizer's loop with and without each plant component (issue 5, "only what
+// Per-tick cost of the power stabilizer's loop with and without each plant component ("only what
 // a scene needs"): the same scene (power-stabilizer.toml's gyro and gains) assembled with one component
 // more at a time, run as `gyrostab run` runs it (tools::run_scene, outputs in memory); the time is the closed
 // loop's CPU time only (RunRequest::before_loop/after_loop), items_per_second = ticks per CPU second.

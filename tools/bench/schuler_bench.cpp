@@ -1,5 +1,5 @@
 // Hours of Schuler time must be cheap: the real-time factor (simulated seconds per wall second) of the 3-hour
-// gyro-pendulum runs with the nutation resolved (issue 6; digest §8: ω^N/|ω^P| ≈ 2e5).
+// gyro-pendulum runs with the nutation resolved (ω^N/|ω^P| ≈ 2e5: docs/models/gyro-pendulum.md).
 //
 // schuler/scene_3h           the shipped sim/scenes/schuler-gyro-pendulum.toml, whole (540 000 ticks of 20 ms,
 //                            2 sub-steps: h = 10 ms, gyroscopic exponential), in-process closed loop with the
@@ -47,7 +47,7 @@ Vehicle flight() {
 }
 
 models::GyroPendulumMagnusParams instrument() {
-  models::GyroPendulumMagnusParams p;  // the digest's: m 5, A 0.02, C 0.025, H 5
+  models::GyroPendulumMagnusParams p;  // the reference instrument of docs/models/gyro-pendulum.md: m 5, A 0.02, C 0.025, H 5
   p.s = oracles::tuned_gyro_pendulum_offset(p.m, p.A, p.C, p.H, p.g, p.R);
   return p;
 }

@@ -34,7 +34,7 @@ Routh reduction with a time-varying spin momentum:
   twice. Both points are verified below by deriving the full 3-DOF Lagrange equations (γ kept) and
   eliminating γ'' and γ', which must give the same α'', β''.
 
-Book checks (Magnus digest, shared/reference/gyro-fundamentals.md): kinematics (1.47), (1.51), (4.32); the
+Book checks (Magnus, docs/models/gimbal-gyro.md): kinematics (1.47), (1.51), (4.32); the
 kinetic energy (4.34); (10.4)-(10.7) for a fixed base with up = (cos δ, 0, sin δ); (4.45) (δ = 0, M = 0);
 the small-angle rotating-frame equations (10.22) as the first-order part in ε of the full equations with
 α, β, α', β', Ω, Ω' = O(ε).

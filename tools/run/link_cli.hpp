@@ -1,4 +1,4 @@
-// Command-line options of the plant / controller processes (issue 4, docs/transport.md) for `gyrostab run`,
+// Command-line options of the plant / controller processes (docs/transport.md) for `gyrostab run`,
 // `gyrostab plant` and `gyrostab controller`. Header-only: only tools/gyrostab_main.cpp includes it.
 #pragma once
 
@@ -55,7 +55,7 @@ inline void add_link_options(CLI::App* cmd, RunRequest& req, LinkSide side) {
            "processes over LCM, one report; can: the same over CAN FD (SocketCAN, --can-if)")
         ->check(CLI::IsMember({"inproc", "lcm", "can"}));
   }
-  // CAN FD over SocketCAN (issue 7, docs/can.md). For plant / controller, --can-if selects CAN instead of
+  // CAN FD over SocketCAN (docs/can.md). For plant / controller, --can-if selects CAN instead of
   // LCM.
   cmd->add_option("--can-if", t.can_if,
                   side == LinkSide::kRun

@@ -34,7 +34,7 @@ std::vector<std::string> child_args(const RunRequest& req, const std::string& ro
   if (!t.lcm_actuator_url.empty()) a.insert(a.end(), {"--lcm-actuator-url", t.lcm_actuator_url});
   a.insert(a.end(), {"--lcm-url", t.lcm_url, "--channel-suffix", suffix, "--timeout-ms",
                      std::to_string(t.timeout_ms), "--start-timeout-ms", std::to_string(t.start_timeout_ms)});
-  if (t.transport == "can") {  // CAN FD over SocketCAN (issue 7): both children on the same interface
+  if (t.transport == "can") {  // CAN FD over SocketCAN: both children on the same interface
     char rate[32], data_rate[32];
     std::snprintf(rate, sizeof rate, "%.17g", t.can_bitrate);
     std::snprintf(data_rate, sizeof data_rate, "%.17g", t.can_data_bitrate);

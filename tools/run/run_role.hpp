@@ -1,4 +1,4 @@
-// Which part of the loop this process runs (DESIGN §2 modes) and how it reaches the other part.
+// Which part of the loop this process runs (docs/architecture.md: the run modes) and how it reaches the other part.
 //   kInProcess   plant + firmware in one program (the embedded default; tests and studies)
 //   kPlant       the plant alone, exchanging frames with a controller process over a transport (LCM, CAN)
 //   kController  the firmware controller alone, the other end of kPlant
@@ -34,7 +34,7 @@ struct TransportOptions {
   std::string replay_log;      // kReplay / kResimulate: the log to read
   bool replay_real_time{false};  // kReplay: feed frames at the scene's tick rate instead of as fast as possible
   bool replay_scene_override{false};  // kReplay / kResimulate: the scene came from --scene, not from the log
-  // Plant / controller processes over LCM (issue 4; tools/run/link_settings.hpp, docs/transport.md):
+  // Plant / controller processes over LCM (tools/run/link_settings.hpp, docs/transport.md):
   std::string transport{"inproc"};    // `run`: inproc, or lcm (plant and controller as two child processes)
   std::int64_t timeout_ms{1000};      // receive timeout: the peer is declared lost after this long silent
   std::int64_t start_timeout_ms{10000};  // the same for the first frame (the peer may still be starting)
@@ -45,7 +45,7 @@ struct TransportOptions {
   FrameFault sensor_drop, sensor_corrupt;      // plant: withhold / NaN-corrupt the sensor frames of these ticks
   FrameFault actuator_drop, actuator_corrupt;  // controller: the same for its actuator frames
   hil::MemoryBus* memory_bus{nullptr};  // tests: an in-process bus instead of LCM (hil/link/memory_bus.hpp)
-  // CAN FD over SocketCAN (issue 7; tools/run/can_link_setup.hpp, docs/can.md). `run --transport can` sets
+  // CAN FD over SocketCAN (tools/run/can_link_setup.hpp, docs/can.md). `run --transport can` sets
   // can_if (default vcan0); for `plant` / `controller` a non-empty can_if selects CAN instead of LCM.
   std::string can_if;                 // interface (vcan0, can0); empty: not CAN
   std::string can_log;                // record the bus in candump's log format here (empty: no log)
