@@ -15,6 +15,11 @@
 
 namespace gyrostab::tools {
 
+// The checks of each variant group (power_stabilizer_check_{rigid,elastic,precession}.cpp).
+bool check_power_stabilizer_rigid(SceneReader& r, PowerStabilizerScene& s);
+bool check_power_stabilizer_elastic(SceneReader& r, PowerStabilizerScene& s);
+bool check_power_stabilizer_precession(SceneReader& r, PowerStabilizerScene& s);
+
 // Fills the derived parts of the scene (op_loops, controller.loops.A/B, full_loop, reduced_expected);
 // problems go to the reader. false when refused.
 bool check_power_stabilizer_plant(SceneReader& r, PowerStabilizerScene& s);
