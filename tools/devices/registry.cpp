@@ -5,7 +5,8 @@ namespace gyrostab::tools {
 // The devices, one line each: the descriptor defined in tools/devices/<device>/<device>_device.cpp.
 #define GYROSTAB_DEVICES(X) \
   X(kShipRollDamper)        \
-  X(kGyroVertical)
+  X(kGyroVertical)          \
+  X(kGyrocompass)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,
