@@ -6,7 +6,8 @@ namespace gyrostab::tools {
 #define GYROSTAB_DEVICES(X) \
   X(kShipRollDamper)        \
   X(kGyroVertical)          \
-  X(kGyrocompass)
+  X(kGyrocompass)           \
+  X(kInertialPlatform)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,
