@@ -7,7 +7,8 @@ namespace gyrostab::tools {
   X(kShipRollDamper)        \
   X(kGyroVertical)          \
   X(kGyrocompass)           \
-  X(kInertialPlatform)
+  X(kInertialPlatform)      \
+  X(kGyroPendulum)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,
