@@ -1,5 +1,5 @@
 // Gyro pendulum (and physical pendulum, H = 0) whose pivot moves arbitrarily over the spherical Earth —
-// Magnus §12.3.3, the small-angle equations (12.52)-(12.58) (digest gyro-devices.md §1.3):
+// Magnus §12.3.3, the small-angle equations (12.52)-(12.58):
 //   (12.52) the reference frame keeps axis 3 on the geocentric vertical, Ω = (−v2/R, v1/R, 0): the
 //           azimuth-free trihedron F of sim/motion/earth_vehicle.hpp (F3 up, no absolute vertical rate)
 //   (12.55) A(α'' − v2'/R) + H β' + (H/R) v1 = −m s v2' − k α
@@ -19,7 +19,7 @@
 // [N m s]; m [kg]; s centre-of-mass distance BELOW the pivot [m] (the book's pendulous sign); R [m], g [m/s²].
 // Fast part for dynamics::GyroscopicExponential: α'' ∋ −(H/A) β', β'' ∋ +(H/A) α' — the nutation ω^N ≈ H/A
 // (12.61) carried exactly, so the 84-min precession can be stepped at h ω^N up to 0.8·2π
-// (ω^N/|ω^P| ≈ 2e5 for the digest's tuned instrument). Without spin (H = 0) use dynamics::Rk4.
+// (ω^N/|ω^P| ≈ 2e5 for the default tuned instrument). Without spin (H = 0) use dynamics::Rk4.
 // Closed forms: sim/oracles/schuler_tuning.hpp ((12.60), (12.61), (12.66)-(12.68), −Hw/(kR)).
 // Oracles: tests/oracle/gyro_pendulum_magnus_test.cpp.
 #pragma once

@@ -2,7 +2,7 @@
 // suspension, erected by a pendulous torque and by the torquers of a correction law (the firmware,
 // firmware/control/gyro_vertical_correction.hpp), in the frame that turns with the vehicle's track.
 //
-// Book: Magnus §12.3 (digest gyro-devices.md §1.3): the torque table (12.35), errors in accelerated flight
+// Book: Magnus §12.3: the torque table (12.35), errors in accelerated flight
 // (12.36)-(12.42) and in a level turn (12.43)-(12.51); built on the master equation (10.22) (§0.2,
 // sim/models/gyro_in_rotating_frame.hpp).
 // Frame (the book's "123" vertical): axis 1 forward along the track, axis 2 to the right, axis 3 down (the
@@ -20,7 +20,7 @@
 // Full form: (10.22) with these torques. Precession form (A = B = 0, the book's (12.35)-(12.51)): the rates
 // from gyro_frame_precession_rates (viscous rows solved exactly); Coulomb friction is refused there (the
 // reduced form cannot resolve sticking — use the full form).
-// [derived] Nutation hidden by the precession theory (digest §8): rows 4-5 are circulatory forces. For
+// [derived] Nutation hidden by the precession theory: rows 4-5 are circulatory forces. For
 // A = B, z = α + iβ, the full form is A z'' + (d − iH) z' + (Hω + c − i f) z = 0 (d = d1 = d2); its roots sum
 // to (−d + iH)/A, so with the precession root's real part −δ (δ = f/H) the nutation root has real part
 // ≈ δ − d/A: without bearing damping the nutation GROWS at the correction rate δ. The instrument needs

@@ -3,7 +3,7 @@
 // so that Earth's rotation turns it into the meridian; damped by a torque about the vertical from the level
 // sensor (the firmware, firmware/control/gyrocompass_law.hpp).
 //
-// Book: Magnus ch. 13 (digest gyro-devices.md §2): fixed base (13.7)-(13.16), moving base — speed deviation
+// Book: Magnus ch. 13: fixed base (13.7)-(13.16), moving base — speed deviation
 // (13.17)-(13.18), ballistic deviation and Schuler tuning (13.19)-(13.28), rolling error (13.29)-(13.39);
 // built on the master equation (10.22) (§0.2, sim/models/gyro_in_rotating_frame.hpp).
 // Frame (book §13.1): axis 1 up, axis 2 east, axis 3 north (geographic; it does not turn with the ship):
@@ -17,7 +17,7 @@
 // Torques: M1 = torquer about the vertical (damping −fβ of (13.8), firmware) + the rolling-error torque
 //          − d1 α';  M2 = −c (β − β_L) (pendulous moment c = G s, (13.8)/(13.21)) + torquer (electrical
 //          pendulosity) − d2 β' (d1, d2: viscous damping of the floated sphere, 0 in the book).
-// [derived] Nutation hidden by the precession theory (digest §8): the damping torque −fβ is a circulatory
+// [derived] Nutation hidden by the precession theory: the damping torque −fβ is a circulatory
 // (non-conservative positional) force; in the full form without d1, d2 the coefficient of λ³ of the
 // characteristic quartic is 0, so the roots sum to 0 and the nutation pair grows at the rate δ/2 at which
 // the compass mode decays. d1, d2 with (d1/A + d2/B)/2 > δ/2 (roughly) make it decay. Their effect on the
@@ -143,7 +143,7 @@ class Gyrocompass {
   GyrocompassParams p_;
 };
 
-// Closed forms of the precession theory for the checks and the run report (digest §2.2-§2.3).
+// Closed forms of the precession theory for the checks and the run report ((13.9)-(13.12)).
 struct GyrocompassTheory {
   double H{1.0};            // [N m s]
   double c{0.0};            // total pendulous moment (mechanical + electrical) [N m/rad]

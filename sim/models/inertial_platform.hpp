@@ -3,7 +3,7 @@
 // axis's stabilization motor (the analog servo, part of this plant), and commanded through the gyro's
 // torquer by the Schuler loop of the firmware (firmware/control/schuler_loop.hpp).
 //
-// Book: Magnus ch. 16 (digest gyro-devices.md §5): single-axis platform with an I-gyro (16.1)-(16.5);
+// Book: Magnus ch. 16: single-axis platform with an I-gyro (16.1)-(16.5);
 // three integrating gyros (16.11)-(16.18) in their decoupled large-H/d form; Schuler tuning (16.27)-(16.50).
 // One axis (absolute platform rate ω_P about it, gyro output angle β):
 //   (16.40)  J ω_P' + H β' = −k β + M^S + M^G                      (platform + stabilization servo)

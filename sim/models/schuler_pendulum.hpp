@@ -10,7 +10,7 @@
 // The first torque is gravity + the inertial force of the accelerated pivot acting at the centre of mass
 // (Chelnokov's y3 × lm a, (1.6)/(1.9)); the second is the gravity-gradient torque of the body, whose
 // small-tilt stiffness is −(3g/R)(C − A) — Magnus (12.57) k = m g s − (3g/R)(C − A), Chelnokov's
-// U' = (3/2)(I1 − I3)(g/R)γ3² ([OCR-fix] per the digest §11).  I_g (default = I) are the physical moments
+// U' = (3/2)(I1 − I3)(g/R)γ3².  I_g (default = I) are the physical moments
 // used by the gradient: Chelnokov's rotor class (1.2) has L = diag(k, k, I3) ω, i.e. it moves exactly like a
 // rigid body of transverse inertia k while its gradient torque still uses the physical I1.
 // A spinning rotor (gyro pendulum) is represented by the whole body spinning about its symmetry axis at
