@@ -4,7 +4,7 @@
 // law commands zero torque on both axes every control tick; the controller runtime still screens each
 // SensorFrame (fault monitor: ranges, staleness, hold-last-good, latched safe state) and publishes one
 // ActuatorFrame per tick with the header and counters (controller_runtime.hpp), as for every device.
-// Reads (SensorFrame; plant: tools/devices/gyro_pendulum_scene.cpp): gimbal_angle_rad[kAxis1], [kAxis2] =
+// Reads (SensorFrame; plant: sim/plants/gyro_pendulum_plant.hpp): gimbal_angle_rad[kAxis1], [kAxis2] =
 // the case's tilt α, β from the geocentric vertical (an observer's pick-off, for the monitor and the log),
 // gimbal_rate_rad_s = α', β', rotor_speed_rad_s. The law reads none of them.
 // Writes (ActuatorFrame): gimbal_torque_Nm[kAxis1] = gimbal_torque_Nm[kAxis2] = 0, precession_brake = 0

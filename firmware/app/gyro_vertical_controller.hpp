@@ -4,7 +4,7 @@
 //
 // Law: firmware/control/gyro_vertical_correction.hpp — the five rows of (12.35) (pendulous, viscous,
 // Coulomb, linear, relay) summed, with the book's remedy for the turn error (turn cut-out) and a torque limit.
-// Reads (SensorFrame; plant: tools/devices/gyro_vertical_scene.cpp, sim/models/gyro_vertical.hpp):
+// Reads (SensorFrame; plant: sim/plants/gyro_vertical_plant.hpp):
 //   gimbal_angle_rad[kAxis1] = e1 = α − α_L   erection sensor (liquid level on the rotor case), tilt of the
 //   gimbal_angle_rad[kAxis2] = e2 = β − β_L   rotor axis from the apparent vertical about axes 1, 2 [rad]
 //   gimbal_rate_rad_s[kAxis1] = α', [kAxis2] = β'   gimbal rates relative to the level frame [rad/s]

@@ -4,7 +4,7 @@
 //
 // Law: firmware/control/gyrocompass_law.hpp — M1 = −f β_lvl (13.8), M2 = −c_e β_lvl; c_e typically set for
 // Schuler tuning (13.26) at a design latitude (schuler_tuned_pendulosity).
-// Reads (SensorFrame; plant: tools/devices/gyrocompass_scene.cpp, sim/models/gyrocompass.hpp):
+// Reads (SensorFrame; plant: sim/plants/gyrocompass_plant.hpp):
 //   gimbal_angle_rad[kAxis2] = β_lvl = β − β_L   level sensor: elevation of the rotor axis's north end
 //                                                above the apparent horizon (the "β + b^N/g" of (13.21)) [rad]
 //   (also filled, not read by the law: gimbal_angle_rad[kAxis1] = follow-up angle, the rotor axis's

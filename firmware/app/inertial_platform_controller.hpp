@@ -6,7 +6,7 @@
 // the two gyro torquers.
 //
 // Law: firmware/control/schuler_loop.hpp — ω_cmd,i ← ω_cmd,i − (g0/R) θ_i T, M_i = −H ω_cmd,i.
-// Reads (SensorFrame; plant: tools/devices/inertial_platform_scene.cpp):
+// Reads (SensorFrame; plant: sim/plants/inertial_platform_plant.hpp):
 //   carrier_angle_rad[kRoll]  = θ_1, carrier_angle_rad[kPitch] = θ_2: the platform's (the carrier's) apparent
 //   tilt about its axes 1, 2 as its accelerometers sense it, specific force / g0 (g0 = 9.80665 m/s²) [rad],
 //   AVERAGED over the previous tick — integrating (Δv) accelerometers, Δv/(g0 T): summing them integrates the

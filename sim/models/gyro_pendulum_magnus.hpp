@@ -61,6 +61,8 @@ class GyroPendulumMagnus {
   static constexpr int kStateSize = 4;
   using State = Eigen::Matrix<double, 4, 1>;
   static constexpr const char* kName = "gyro-pendulum-magnus";
+  // The state's components, by name.
+  static constexpr int kAlpha = 0, kBeta = 1, kAlphaRate = 2, kBetaRate = 3;
 
   GyroPendulumMagnus(const GyroPendulumMagnusParams& p, const Reference& ref) : p_(p), ref_(ref), k_(p.k()) {}
 

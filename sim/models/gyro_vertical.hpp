@@ -89,6 +89,8 @@ class GyroVertical {
  public:
   static constexpr int kStateSize = 4;
   using State = Eigen::Matrix<double, 4, 1>;
+  // The state's components, by name.
+  static constexpr int kAlpha = 0, kBeta = 1, kAlphaRate = 2, kBetaRate = 3;
 
   explicit GyroVertical(const GyroVerticalParams& p = {}) : p_(p) {}
 

@@ -98,6 +98,8 @@ class Gyrocompass {
  public:
   static constexpr int kStateSize = 6;
   using State = Eigen::Matrix<double, 6, 1>;
+  // The state's components, by name (γ: the swing about the rotor axis).
+  static constexpr int kAlpha = 0, kBeta = 1, kAlphaRate = 2, kBetaRate = 3, kSwing = 4, kSwingRate = 5;
 
   explicit Gyrocompass(const GyrocompassParams& p = {}) : p_(p) {}
 

@@ -99,6 +99,8 @@ class SingleAxisPlatform {
  public:
   static constexpr int kStateSize = 4;
   using State = Eigen::Matrix<double, 4, 1>;
+  // The state's components, by name.
+  static constexpr int kTilt = 0, kPlatformRate = 1, kGyroAngle = 2, kGyroRate = 3;
 
   struct Inputs {
     FrameInputs frame{};  // track trihedron T: Ω_T2 = ϑ', f_T1 along track, f_T3 up
@@ -140,6 +142,8 @@ class ThreeAxisPlatform {
  public:
   static constexpr int kStateSize = 12;
   using State = Eigen::Matrix<double, 12, 1>;
+  // The state's components, by name: the first of three (axes 1, 2, 3).
+  static constexpr int kTilt = 0, kPlatformRate = 3, kGyroAngle = 6, kGyroRate = 9;
 
   struct Inputs {
     FrameInputs frame{};          // azimuth-free trihedron F: Ω = (p0, q0, 0), f

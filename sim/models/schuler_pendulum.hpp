@@ -62,6 +62,8 @@ class SchulerPendulum {
   static constexpr int kStateSize = 7;
   using State = RigidBodyState;
   static constexpr const char* kName = "schuler-pendulum";
+  // The state's parts, by their first component: ω_IB_B (3), q_IB (x, y, z, w).
+  static constexpr int kBodyRate = 0, kAttitude = 3;
   static constexpr bool kHasTorque = true;
 
   SchulerPendulum(const SchulerPendulumParams& p, const Reference& ref)

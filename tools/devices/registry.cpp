@@ -7,7 +7,11 @@ namespace gyrostab::tools {
   X(kShipRollDamper)        \
   X(kPowerStabilizer)       \
   X(kMonorail)              \
-  X(kServoGyro)
+  X(kServoGyro)             \
+  X(kGyroVertical)          \
+  X(kGyrocompass)           \
+  X(kInertialPlatform)      \
+  X(kGyroPendulum)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,

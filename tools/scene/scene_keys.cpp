@@ -1,5 +1,11 @@
 #include "tools/scene/scene_keys.hpp"
 
+#include <cctype>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
 #include "tools/devices/registry.hpp"
 #include "tools/scene/loop_config.hpp"
 
@@ -38,6 +44,18 @@ Read by every device (tools/scene/loop_config.cpp).
 
 )";
 
+// GitHub's anchor of a heading: lower case, spaces to '-', other punctuation dropped.
+std::string anchor(const std::string& title) {
+  std::string a;
+  for (const char c : title) {
+    if (c == ' ')
+      a += '-';
+    else if (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')
+      a += static_cast<char>(std::tolower(c));
+  }
+  return a;
+}
+
 }  // namespace
 
 std::string scenes_markdown() {
@@ -45,16 +63,43 @@ std::string scenes_markdown() {
   s += markdown(loop_config_doc());
   s += "\nThe figures every run writes in `timing` (not in `figures`, because they vary run to run): `ticks`, `wall_s`,\n"
        "`ticks_per_second`, `real_time_factor`, and the controller's scheduler and fault-monitor counters.\n";
+  // A titled table that several devices share (e.g. the vehicle motion) follows each device's own keys,
+  // rules and figures: written out at its first device, a link at the others.
+  std::vector<SceneDoc> docs;
+  std::map<std::string, int> uses;  // a titled table's markdown → the devices that return it
   for (const DeviceDescriptor* d : devices()) {
+    docs.push_back(d->doc());
+    for (const SceneDocTable& t : docs.back().tables) {
+      if (!t.title.empty()) ++uses[markdown(t)];
+    }
+  }
+  std::map<std::string, std::string_view> written;  // a shared table's markdown → the device it is under
+  std::size_t n = 0;
+  for (const DeviceDescriptor* d : devices()) {
+    const SceneDoc& doc = docs[n++];
     s += "\n## " + std::string(d->name) + "\n\n`[scene] device = \"" + std::string(d->name) + "\"` — " +
          std::string(d->summary) + "\n\n";
-    const SceneDoc doc = d->doc();
-    for (std::size_t i = 0; i < doc.tables.size(); ++i) {
-      if (i > 0) s += "\n";
-      s += markdown(doc.tables[i]);
+    std::vector<const SceneDocTable*> shared;
+    bool first = true;
+    for (const SceneDocTable& t : doc.tables) {
+      if (!t.title.empty() && uses[markdown(t)] > 1) {
+        shared.push_back(&t);
+        continue;
+      }
+      if (!first) s += "\n";
+      first = false;
+      s += markdown(t);
     }
     if (!doc.rules.empty()) s += "\n" + markdown_rules(doc.rules);
     if (!d->figures.empty()) s += "\n" + std::string(d->figures) + "\n";
+    for (const SceneDocTable* t : shared) {
+      const std::string table = markdown(*t);
+      const auto [at, is_new] = written.emplace(table, d->name);
+      s += "\n";
+      s += is_new ? table
+                  : "The [" + t->title + "](#" + anchor(t->title) + ") keys apply as well (listed under `" +
+                        std::string(at->second) + "`).\n";
+    }
   }
   return s;
 }

@@ -1,0 +1,217 @@
+// What a gyro vertical run reports: the plant of sim/plants/gyro_vertical_plant.hpp with its meters — per
+// manoeuvre segment the tilt (α, β) at its end beside the book's prediction from the segment's start,
+//   z = z_eq + (z0 − z_eq) e^(−[δ + i(ω + ω^P)] t),  z_eq = (δ + iω^P)(α_L + iβ_L)/(δ + i(ω + ω^P))
+// ((12.45)/(12.39); in a steady turn z_eq = z_G of (12.47)), with δ = f/H, ω^P = c/H (plant + firmware row 1)
+// when the law is the linear one (rows 1 and 4, equal on both axes; δ = 0 while cut out), else none; the
+// resonance turn rate −ω^P, the largest indicated-bank error |α|, the turn indicator's reading against the
+// true turn rate (15.6: ≈ cos φ), the half-step error estimate — the CSV columns, the figures, and the
+// scene's plant and controller for the run modes. (12.47) neglects the Earth and transport rates, whose
+// steady error is ≈ |Ω_h| H/f, and the bearing damping d that keeps the nutation stable, which shifts δ by
+// d(Hω + c)/(fH) relative and leaves the equilibrium unchanged.
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "firmware/platform/posix/monotonic_clock.hpp"
+#include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/manoeuvre_segment_log.hpp"
+#include "tools/devices/gyro_vertical/gyro_vertical_scene.hpp"
+#include "tools/devices/vehicle_instruments/segments_json.hpp"
+#include "tools/run/error_estimate_report.hpp"
+
+namespace gyrostab::tools {
+namespace {
+
+using Plant = plants::GyroVerticalPlant;
+// Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
+using Controller = firmware::BasicGyroVerticalController<firmware::posix::MonotonicClock>;
+
+const std::vector<std::string>& columns() {
+  static const std::vector<std::string> c{"alpha_rad",  "beta_rad", "alpha_L_rad",     "beta_L_rad",
+                                          "M1_Nm",      "M2_Nm",    "turn_rate_rad_s", "turn_indicator_rad_s",
+                                          "status_bits"};
+  return c;
+}
+
+struct SegmentRecord : analysis::SegmentSpan {
+  bool cut_out{false};
+  double alpha_start{0.0}, beta_start{0.0};  // [rad]
+  double alpha_end{0.0}, beta_end{0.0};
+  double alpha_L{0.0}, beta_L{0.0};  // apparent vertical at the segment's start (+1 tick)
+  double turn_rate{0.0};             // Ω3 of the frame [rad/s]
+  double indicator_sum{0.0}, true_rate_sum{0.0};
+};
+
+class GyroVerticalRun {
+ public:
+  explicit GyroVerticalRun(const GyroVerticalScene& s)
+      : s_(s),
+        plant_(s.plant, s.loop.plant_timing()),
+        window_(s.loop.ticks() / 2, 1000),
+        segments_(s.plant.vehicle) {
+    begin_segment(segments_.current());
+  }
+
+  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const msg::ActuatorFrame& cmd) {
+    last_ = cmd;
+    plant_.actuate(cmd);
+    if ((cmd.status & firmware::bit(firmware::LawStatusBit::kCorrectionCutOut)) != 0u) {
+      segments_.current().cut_out = true;
+    }
+  }
+  void advance(std::int64_t tick) {
+    plant_.begin_tick(tick);
+    window_.before_tick(tick, plant_.state(), plant_.inputs());
+    plant_.integrate(tick);
+    window_.after_tick(tick, plant_.state());
+    plant_.end_tick();
+    ticks_ = tick + 1;
+    const double t1 = static_cast<double>(ticks_) * s_.loop.tick_s();
+    alpha_peak_ = std::max(alpha_peak_, std::fabs(plant_.alpha_rad()));
+    SegmentRecord& r = segments_.current();
+    if (!r.samples) {
+      const models::ApparentVertical L = plant_.apparent_vertical();
+      r.alpha_L = L.alpha_L;
+      r.beta_L = L.beta_L;
+      r.turn_rate = plant_.turn_rate_rad_s();
+    }
+    r.indicator_sum += plant_.turn_indicator_rad_s();
+    r.true_rate_sum += plant_.turn_rate_rad_s();
+    ++r.samples;
+    segments_.advance(
+        ticks_ * s_.loop.tick_ns, t1, [this](SegmentRecord& e) { end_segment(e); },
+        [this](SegmentRecord& b) { begin_segment(b); });
+  }
+  bool finite() const { return plant_.finite(); }
+
+  static constexpr int kGuardedStates = Plant::kGuardedStates;
+  static const char* state_name(int i) { return Plant::state_name(i); }
+  double state_value(int i) const { return plant_.state_value(i); }
+
+  void record(double* row) const {
+    const models::ApparentVertical L = plant_.apparent_vertical();
+    row[0] = plant_.alpha_rad();
+    row[1] = plant_.beta_rad();
+    row[2] = L.alpha_L;
+    row[3] = L.beta_L;
+    row[4] = last_.gimbal_torque_Nm[msg::kAxis1];
+    row[5] = last_.gimbal_torque_Nm[msg::kAxis2];
+    row[6] = plant_.turn_rate_rad_s();
+    row[7] = plant_.turn_indicator_rad_s();
+    row[8] = static_cast<double>(last_.status);
+  }
+
+  nlohmann::json figures() const {
+    const firmware::GyroVerticalCorrectionParams& law = s_.controller.law;
+    const models::GyroVerticalParams& gyro = s_.plant.gyro;
+    const double H = gyro.gyro.H;
+    // The plant's bearing damping d shifts δ by d(Hω + c)/(fH) only: it does not void the prediction.
+    const bool linear = law.f1 == law.f2 && law.c1 == law.c2 && law.d1 == 0.0 && law.d2 == 0.0 &&
+                        law.r1 == 0.0 && law.r2 == 0.0 && law.g1 == 0.0 && law.g2 == 0.0 && gyro.r1 == 0.0 &&
+                        gyro.r2 == 0.0;
+    const double delta = law.f1 / H, omega_P = (gyro.c + law.c1) / H, omega_P_plant = gyro.c / H;
+    const double alpha = plant_.alpha_rad(), beta = plant_.beta_rad();
+    nlohmann::json f{{"ticks", ticks_},
+                     {"H_Nms", H},
+                     {"delta_s", delta},
+                     {"omega_P_rad_s", omega_P},
+                     {"resonance_turn_rate_rad_s", -omega_P},
+                     {"indicated_bank_error_max_rad", alpha_peak_},
+                     {"alpha_end_rad", alpha},
+                     {"beta_end_rad", beta},
+                     {"prediction_applies", linear}};
+    if (gyro.fidelity == models::InstrumentFidelity::kFull) {
+      f["nutation_frequency_rad_s"] = models::nutation_frequency(gyro.gyro);
+    }
+    const double t_now = static_cast<double>(ticks_) * s_.loop.tick_s();
+    f["segments"] = segments_json(segments_, t_now, [&](nlohmann::json& j, const SegmentRecord& r) {
+      j["turn_rate_rad_s"] = r.turn_rate;
+      j["alpha_L_rad"] = r.alpha_L;
+      j["beta_L_rad"] = r.beta_L;
+      j["correction_cut_out"] = r.cut_out;
+      j["alpha_end_rad"] = r.ended ? r.alpha_end : alpha;
+      j["beta_end_rad"] = r.ended ? r.beta_end : beta;
+      const double mean_true = r.true_rate_sum / static_cast<double>(r.samples);
+      j["turn_indicator_over_true"] = std::fabs(mean_true) > 1e-6
+                                          ? nlohmann::json(r.indicator_sum / r.true_rate_sum)
+                                          : nlohmann::json(nullptr);
+      if (linear) {
+        // (12.45)/(12.39): the constant-coefficient solution from the segment's start.
+        using C = std::complex<double>;
+        const double d = r.cut_out ? 0.0 : delta, wP = r.cut_out ? omega_P_plant : omega_P;
+        const C k(d, r.turn_rate + wP);
+        const C z_eq = C(d, wP) * C(r.alpha_L, r.beta_L) / k;
+        const double T = (r.ended ? r.t_end : t_now) - r.t_start;
+        const C z = z_eq + (C(r.alpha_start, r.beta_start) - z_eq) * std::exp(-k * T);
+        j["alpha_G_rad"] = z_eq.real();  // (12.47) in a steady turn
+        j["beta_G_rad"] = z_eq.imag();
+        j["alpha_book_end_rad"] = z.real();
+        j["beta_book_end_rad"] = z.imag();
+      }
+    });
+    return f;
+  }
+
+  // report.json "error_estimate": 1000 ticks from the run's middle (the frame's motion is interpolated within
+  // the tick exactly as in the run, so the re-integration at half the step sees the same forcing).
+  nlohmann::json error_estimate() const {
+    const auto apply = [](Plant::Model& m, const Plant::Inputs& in) { m.inputs = in; };
+    return error_estimate_json<4>(
+        window_.estimate<dynamics::Rk4>(plant_.model(), apply, s_.loop.tick_ns, s_.loop.substeps, 4),
+        {"alpha_rad", "beta_rad", "alpha_rate_rad_s", "beta_rate_rad_s"},
+        "none watched: vehicle motion, correction torques and friction act");
+  }
+
+ private:
+  void begin_segment(SegmentRecord& r) const {
+    r.alpha_start = plant_.alpha_rad();
+    r.beta_start = plant_.beta_rad();
+  }
+  void end_segment(SegmentRecord& r) const {
+    r.alpha_end = plant_.alpha_rad();
+    r.beta_end = plant_.beta_rad();
+  }
+
+  const GyroVerticalScene& s_;
+  Plant plant_;
+  analysis::HalfStepWindow<Plant::Model, Plant::Inputs> window_;
+  msg::ActuatorFrame last_{};
+  analysis::ManoeuvreSegmentLog<SegmentRecord> segments_;
+  double alpha_peak_{0.0};
+  std::int64_t ticks_{0};
+};
+
+class GyroVerticalDeviceScene final : public DeviceScene {
+ public:
+  explicit GyroVerticalDeviceScene(std::unique_ptr<GyroVerticalScene> s) : s_(std::move(s)) {}
+
+  const LoopConfig& loop() const override { return s_->loop; }
+  std::vector<std::string> columns() const override { return tools::columns(); }
+  nlohmann::json limits() const override {
+    const auto& law = s_->controller.law;
+    nlohmann::json l{{"torquer_limit_Nm", law.torque_limit_Nm}};
+    if (law.turn_cutout_rate > 0.0) l["turn_cutout_rate_rad_s"] = law.turn_cutout_rate;
+    return l;
+  }
+  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
+    return make_plant_port<GyroVerticalRun>(*s_);
+  }
+  std::unique_ptr<ControllerPort> make_controller() const override {
+    return make_controller_port<Controller>(s_->controller);
+  }
+
+ private:
+  std::unique_ptr<GyroVerticalScene> s_;
+};
+
+}  // namespace
+
+std::unique_ptr<DeviceScene> make_gyro_vertical_scene(std::unique_ptr<GyroVerticalScene> s) {
+  return std::make_unique<GyroVerticalDeviceScene>(std::move(s));
+}
+
+}  // namespace gyrostab::tools

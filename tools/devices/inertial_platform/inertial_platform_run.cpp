@@ -1,0 +1,206 @@
+// What an inertial platform run reports: the plant of sim/plants/inertial_platform_plant.hpp with its meters,
+// per level channel, measured beside the book's — the period of the tilt e from its extrema against the
+// loop's 2π/ω, ω² = (g/R_loop)(H_loop/H) ((16.38)/(16.44): 84.4 min when tuned); max |e| against the tuned
+// bound sqrt(e0² + (Δω0/ω_S)²) of (16.46)/(16.49) (any vehicle motion); the loop's velocity error
+// v_err = R_loop ω_cmd − R Ω (ω_cmd read from the torquer command, M = −H_loop ω_cmd) and the position error
+// ∫v_err dt, with the book's amplitudes e0 sqrt(gR) and 2 R e0 (16.47) (book: 2.2 km for 0.01°); the servo
+// offset β0 = M^S/k (16.2) — the half-step error estimate, the CSV columns, the figures, and the scene's
+// plant and controller for the run modes.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "firmware/platform/posix/monotonic_clock.hpp"
+#include "sim/analysis/extrema_meter.hpp"
+#include "sim/analysis/half_step_window.hpp"
+#include "tools/devices/inertial_platform/inertial_platform_scene.hpp"
+#include "tools/run/error_estimate_report.hpp"
+
+namespace gyrostab::tools {
+namespace {
+
+// Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
+using Controller = firmware::BasicInertialPlatformController<firmware::posix::MonotonicClock>;
+constexpr double kPi = std::numbers::pi;
+
+const std::vector<std::string>& columns() {
+  static const std::vector<std::string> c{"tilt1_rad",  "tilt2_rad",           "theta1_rad",
+                                          "theta2_rad", "torquer1_Nm",         "torquer2_Nm",
+                                          "gyro1_rad",  "velocity_error1_m_s", "status_bits"};
+  return c;
+}
+
+struct ChannelStats {
+  analysis::ExtremaMeter<64> extrema{};
+  double tilt_max{0.0};
+  double velocity_error_max{0.0};
+  double position_error{0.0}, position_error_max{0.0};
+};
+
+template <class Model>
+class InertialPlatformRun {
+  using Plant = plants::InertialPlatformPlant<Model>;
+  static constexpr int kChannels = Plant::kChannels;
+
+ public:
+  explicit InertialPlatformRun(const InertialPlatformScene& s)
+      : s_(s), plant_(s.plant, s.loop.plant_timing()), window_(s.loop.ticks() / 2, 1000) {
+    for (ChannelStats& c : stats_) c.extrema = analysis::ExtremaMeter<64>(s.extrema_hysteresis);
+    remember_rates(0);
+  }
+
+  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const msg::ActuatorFrame& cmd) {
+    last_ = cmd;
+    plant_.actuate(cmd);
+  }
+  void advance(std::int64_t tick) {
+    plant_.begin_tick(tick);
+    window_.before_tick(tick, plant_.state(), plant_.inputs());
+    plant_.integrate(tick);
+    window_.after_tick(tick, plant_.state());
+    plant_.end_tick();
+    remember_rates(tick + 1);
+    ticks_ = tick + 1;
+    const double t1 = static_cast<double>(ticks_) * s_.loop.tick_s();
+    const double R = s_.plant.vehicle.earth.radius, RL = s_.controller.law.radius, HL = s_.controller.law.H;
+    for (int i = 0; i < kChannels; ++i) {
+      ChannelStats& c = stats_[static_cast<std::size_t>(i)];
+      const double e = plant_.tilt_rad(i);
+      c.tilt_max = std::max(c.tilt_max, std::fabs(e));
+      if (ticks_ % s_.extrema_every_ticks == 0) c.extrema.add(t1, e);
+      // The loop's velocity estimate from its torquer command; the channel's true v = ±R Ω at the time
+      // the command estimates (the end of the control step it came from, latency_ticks earlier).
+      const double w_cmd = -last_.gimbal_torque_Nm[i] / HL;
+      const double v_err = RL * w_cmd - R * rate_history(tick + 1 - s_.loop.latency_ticks, i);
+      c.velocity_error_max = std::max(c.velocity_error_max, std::fabs(v_err));
+      c.position_error += v_err * s_.loop.tick_s();
+      c.position_error_max = std::max(c.position_error_max, std::fabs(c.position_error));
+    }
+  }
+  bool finite() const { return plant_.finite(); }
+
+  static constexpr int kGuardedStates = Plant::kGuardedStates;
+  static const char* state_name(int i) { return Plant::state_name(i); }
+  double state_value(int i) const { return plant_.state_value(i); }
+
+  void record(double* row) const {
+    const double t = static_cast<double>(ticks_) * s_.loop.tick_s();
+    double theta[2];
+    plant_.apparent_tilts(t, theta);
+    row[0] = plant_.tilt_rad(0);
+    row[1] = kChannels > 1 ? plant_.tilt_rad(1) : 0.0;
+    row[2] = theta[0];
+    row[3] = theta[1];
+    row[4] = last_.gimbal_torque_Nm[msg::kAxis1];
+    row[5] = last_.gimbal_torque_Nm[msg::kAxis2];
+    row[6] = plant_.gyro_angle_rad(0);
+    row[7] = s_.controller.law.radius * (-last_.gimbal_torque_Nm[0] / s_.controller.law.H) -
+             s_.plant.vehicle.earth.radius * rate_history(ticks_ - s_.loop.latency_ticks, 0);
+    row[8] = static_cast<double>(last_.status);
+  }
+
+  // The loop's initial torque: the level frame's rate at t = 0 (no start transient).
+  msg::ActuatorFrame initial_command() const {
+    msg::ActuatorFrame a{};
+    for (int i = 0; i < kChannels; ++i)
+      a.gimbal_torque_Nm[i] = -s_.controller.law.H * s_.controller.law.initial_rate[i];
+    return a;
+  }
+
+  nlohmann::json figures() const {
+    const double g = s_.plant.vehicle.earth.gravity, R = s_.plant.vehicle.earth.radius;
+    const double RL = s_.controller.law.radius, HL = s_.controller.law.H, wS = std::sqrt(g / R);
+    nlohmann::json f{{"ticks", ticks_}, {"axes", s_.plant.axes}, {"schuler_period_s", 2.0 * kPi / wS}};
+    nlohmann::json ch = nlohmann::json::array();
+    for (int i = 0; i < kChannels; ++i) {
+      const ChannelStats& c = stats_[static_cast<std::size_t>(i)];
+      const models::PlatformAxisParams& a = s_.plant.axis[i].params;
+      const double w_loop = std::sqrt(g / RL * HL / a.H);
+      const double dw0 = s_.velocity_error0[i] / RL;
+      const double e0 = s_.plant.axis[i].tilt0;
+      nlohmann::json j{{"channel", i + 1},
+                       {"period_loop_book_s", 2.0 * kPi / w_loop},
+                       {"tilt_max_rad", c.tilt_max},
+                       {"tilt_bound_tuned_rad", std::hypot(e0, dw0 / wS)},
+                       {"tilt_end_rad", plant_.tilt_rad(i)},
+                       {"velocity_error_max_m_s", c.velocity_error_max},
+                       {"velocity_error_amplitude_book_16_47_m_s", std::fabs(e0) * std::sqrt(g * R)},
+                       {"position_error_max_m", c.position_error_max},
+                       {"position_error_max_book_16_47_m", 2.0 * R * std::fabs(e0)},
+                       {"servo_offset_book_16_2_rad", a.disturbance / a.k},
+                       {"gyro_angle_end_rad", plant_.gyro_angle_rad(i)},
+                       {"servo_gain_limit_16_5", a.k_max()},
+                       {"drift_position_rate_book_16_50_m_s", -a.drift * R},
+                       {"extrema", c.extrema.count()}};
+      j["period_measured_s"] =
+          c.extrema.count() >= 2 ? nlohmann::json(c.extrema.period()) : nlohmann::json(nullptr);
+      ch.push_back(j);
+    }
+    f["channels"] = ch;
+    return f;
+  }
+
+  // report.json "error_estimate": 1000 ticks from the run's middle (the frame's motion is interpolated within
+  // the tick exactly as in the run, so the re-integration at half the step sees the same forcing).
+  nlohmann::json error_estimate() const {
+    const auto apply = [](Model& m, const typename Model::Inputs& in) { m.inputs = in; };
+    return error_estimate_json<Model::kStateSize>(
+        window_.template estimate<dynamics::Rk4>(plant_.model(), apply, s_.loop.tick_ns, s_.loop.substeps, 4),
+        Plant::state_names(), "none watched: vehicle motion, servo and Schuler-loop torques act");
+  }
+
+ private:
+  static constexpr std::int64_t kHistory = kMaxLatencyTicks + 2;
+  // The level frame's rate about channel i at the start of tick k (k ≥ 0, within the last kHistory ticks).
+  void remember_rates(std::int64_t k) {
+    for (int i = 0; i < kChannels; ++i)
+      rate_hist_[static_cast<std::size_t>(k % kHistory)][static_cast<std::size_t>(i)] =
+          plant_.frame_rate_rad_s(i);
+  }
+  double rate_history(std::int64_t k, int i) const {
+    k = k < 0 ? 0 : k;
+    return rate_hist_[static_cast<std::size_t>(k % kHistory)][static_cast<std::size_t>(i)];
+  }
+
+  const InertialPlatformScene& s_;
+  Plant plant_;
+  analysis::HalfStepWindow<Model, typename Model::Inputs> window_;
+  msg::ActuatorFrame last_{};
+  std::array<ChannelStats, 2> stats_{};
+  std::array<std::array<double, 2>, static_cast<std::size_t>(kHistory)> rate_hist_{};
+  std::int64_t ticks_{0};
+};
+
+class InertialPlatformDeviceScene final : public DeviceScene {
+ public:
+  explicit InertialPlatformDeviceScene(std::unique_ptr<InertialPlatformScene> s) : s_(std::move(s)) {}
+
+  const LoopConfig& loop() const override { return s_->loop; }
+  std::vector<std::string> columns() const override { return tools::columns(); }
+  nlohmann::json limits() const override {
+    return {{"torquer_limit_Nm", s_->controller.law.torque_limit_Nm}};
+  }
+  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
+    if (s_->plant.axes == 1) return make_plant_port<InertialPlatformRun<models::SingleAxisPlatform>>(*s_);
+    return make_plant_port<InertialPlatformRun<models::ThreeAxisPlatform>>(*s_);
+  }
+  std::unique_ptr<ControllerPort> make_controller() const override {
+    return make_controller_port<Controller>(s_->controller);
+  }
+
+ private:
+  std::unique_ptr<InertialPlatformScene> s_;
+};
+
+}  // namespace
+
+std::unique_ptr<DeviceScene> make_inertial_platform_scene(std::unique_ptr<InertialPlatformScene> s) {
+  return std::make_unique<InertialPlatformDeviceScene>(std::move(s));
+}
+
+}  // namespace gyrostab::tools
