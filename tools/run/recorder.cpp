@@ -7,7 +7,7 @@ namespace gyrostab::tools {
 
 Recorder::Recorder(std::vector<std::string> columns, std::int64_t ticks, int every,
                    const std::vector<std::string>& selection)
-    : every_(every < 1 ? 1 : every) {
+    : every_(every < 1 ? 1 : every), next_due_(every_) {
   columns_.push_back("t_s");
   if (selection.empty()) {
     for (auto& c : columns) columns_.push_back(std::move(c));

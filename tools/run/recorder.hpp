@@ -21,7 +21,17 @@ class Recorder {
   // offending name and the valid ones.
   static std::string check_signals(const std::vector<std::string>& columns, const std::vector<std::string>& wanted);
 
-  bool due(std::int64_t tick) const { return tick % every_ == 0; }
+  // Whether `tick` gets a row (tick a multiple of `every`). Asked once per tick in order, it compares with the
+  // next multiple instead of dividing; a caller that skips ticks still gets the multiples.
+  bool due(std::int64_t tick) {
+    if (tick < next_due_) return false;
+    if (tick == next_due_) {
+      next_due_ += every_;
+      return true;
+    }
+    next_due_ = (tick / every_ + 1) * every_;
+    return tick % every_ == 0;
+  }
   // Pointer to the next row's columns (after the time column), all of the device's columns in order;
   // nullptr when the table is full.
   double* row(double t) {
@@ -57,6 +67,7 @@ class Recorder {
 
   std::vector<std::string> columns_;  // including "t_s"
   int every_;
+  std::int64_t next_due_;  // the next multiple of every_ to record
   std::int64_t width_;
   std::int64_t capacity_;
   std::int64_t rows_{0};
