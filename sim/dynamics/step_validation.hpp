@@ -18,13 +18,13 @@
 // Docs: docs/models/integrators.md#step-validation-step_validationhpp
 #pragma once
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <complex>
 #include <cstdio>
 #include <numbers>
 #include <string>
 
+#include "sim/dynamics/eigenvalues.hpp"
 #include "sim/dynamics/implicit_midpoint.hpp"
 
 namespace gyrostab::dynamics {
@@ -171,10 +171,10 @@ Mode fastest_mode(const Model& model, double t, const typename Model::State& x,
   constexpr int N = Model::kStateSize;
   Eigen::Matrix<double, N, N> J;
   finite_difference_jacobian(model, t, x, J);
-  Eigen::EigenSolver<Eigen::Matrix<double, N, N>> es(J, false);
+  const EigenvaluesOf<N> ev = eigenvalues<N>(J);
   std::complex<double> best{0.0, 0.0};
   for (int i = 0; i < N; ++i) {
-    const std::complex<double> l = es.eigenvalues()[i];
+    const std::complex<double> l = ev[i];
     if (std::abs(l) > std::abs(best) || (std::abs(l) == std::abs(best) && l.imag() > best.imag())) best = l;
   }
   Mode m;

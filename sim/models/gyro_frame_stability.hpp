@@ -7,9 +7,9 @@
 // Test: tests/oracle/gyro_vertical_test.cpp and gyrocompass_test.cpp (the growth without bearing damping).
 #pragma once
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 
+#include "sim/dynamics/eigenvalues.hpp"
 #include "sim/models/gyro_in_rotating_frame.hpp"
 
 namespace gyrostab::models {
@@ -28,9 +28,9 @@ inline double gyro_frame_growth_rate(const GyroFrameParams& p, const GyroFrameSt
       0, 0, 0, 1,                               //
       -K.k11 / A, -K.k12 / A, -d1 / A, -H / A,  //
       -K.k21 / B, -K.k22 / B, H / B, -d2 / B;
-  const Eigen::EigenSolver<Eigen::Matrix4d> es(J, false);
+  const dynamics::EigenvaluesOf<4> ev = dynamics::eigenvalues<4>(J);
   double growth = -1e300;
-  for (int i = 0; i < 4; ++i) growth = std::max(growth, es.eigenvalues()[i].real());
+  for (int i = 0; i < 4; ++i) growth = std::max(growth, ev[i].real());
   return growth;
 }
 

@@ -16,7 +16,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -25,6 +24,7 @@
 #include "sim/analysis/extrema_meter.hpp"
 #include "sim/analysis/zero_crossing_meter.hpp"
 #include "sim/dynamics/rk4.hpp"
+#include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab {
 namespace {
@@ -144,9 +144,9 @@ TEST(GyrocompassOracle, FullFormSlowModeAgainstTheBook13_12_13_16) {
   const double H = 2.0, A = 0.05, c = m.plant.params().c, wh = kWe * std::cos(kLat);
   Eigen::Matrix4d J;  // x = (α, β, α', β'), (10.22) with Ω = (ω^E sinφ, 0, ω^E cosφ), M2 = −cβ
   J << 0, 0, 1, 0, 0, 0, 0, 1, -H * wh / A, 0, 0, -H / A, 0, -(H * wh + c) / A, H / A, 0;
-  Eigen::EigenSolver<Eigen::Matrix4d> es(J, false);
+  const dynamics::EigenvaluesOf<4> ev = dynamics::eigenvalues<4>(J);
   double w_slow = 1e9;
-  for (int i = 0; i < 4; ++i) w_slow = std::min(w_slow, std::fabs(es.eigenvalues()[i].imag()));
+  for (int i = 0; i < 4; ++i) w_slow = std::min(w_slow, std::fabs(ev[i].imag()));
   const double T_lin = 2 * kPi / w_slow;
   dynamics::Rk4<CorrectedCompass> integ(m);
   Gyrocompass::State x = Gyrocompass::make_state(0.05, 0.0);
@@ -185,12 +185,12 @@ TEST(GyrocompassOracle, FullFormDampedNeedsSphereDampingForItsNutation) {
     const double wh = kWe * std::cos(kLat), c = p.c, f = m.law.f;
     Eigen::Matrix4d J;
     J << 0, 0, 1, 0, 0, 0, 0, 1, -H * wh / A, -f / A, -d / A, -H / A, 0, -(H * wh + c) / A, H / A, -d / A;
-    Eigen::EigenSolver<Eigen::Matrix4d> es(J, false);
+    const dynamics::EigenvaluesOf<4> ev = dynamics::eigenvalues<4>(J);
     double nut = 0, nut_mag = 0;
     for (int i = 0; i < 4; ++i) {
-      if (std::abs(es.eigenvalues()[i]) > nut_mag) {
-        nut_mag = std::abs(es.eigenvalues()[i]);
-        nut = es.eigenvalues()[i].real();
+      if (std::abs(ev[i]) > nut_mag) {
+        nut_mag = std::abs(ev[i]);
+        nut = ev[i].real();
       }
     }
     const models::GyrocompassTheory th{H, c, f, kWe, kLat};

@@ -20,7 +20,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -39,6 +38,7 @@
 #include "sim/dynamics/step_validation.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "tests/support/alloc_counter.hpp"
+#include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab {
 namespace {
@@ -63,7 +63,7 @@ Eigen::Matrix<cd, N, 1> polynomial_roots(const double (&c)[N + 1]) {
   Eigen::Matrix<double, N, N> C = Eigen::Matrix<double, N, N>::Zero();
   for (int i = 1; i < N; ++i) C(i, i - 1) = 1.0;
   for (int i = 0; i < N; ++i) C(i, N - 1) = -c[N - i] / c[0];
-  return Eigen::EigenSolver<Eigen::Matrix<double, N, N>>(C, false).eigenvalues();
+  return dynamics::eigenvalues<N>(C);
 }
 
 // Roots of (14.23), d1, d2 the total damping.

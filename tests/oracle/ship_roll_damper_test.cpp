@@ -14,7 +14,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +21,7 @@
 
 #include "sim/dynamics/rk4.hpp"
 #include "tests/support/alloc_counter.hpp"
+#include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab {
 namespace {
@@ -94,9 +94,9 @@ void linear_rates(const ShipRollDamperParams& p, double& slowest_decay, double& 
   M(3, 1) = -p.q / p.B;
   M(3, 2) = p.H / p.B;
   M(3, 3) = -p.d2 / p.B;
-  const Eigen::EigenSolver<Eigen::Matrix4d> es(M, false);
-  slowest_decay = -es.eigenvalues().real().maxCoeff();
-  fastest = es.eigenvalues().cwiseAbs().maxCoeff();
+  const dynamics::EigenvaluesOf<4> ev = dynamics::eigenvalues<4>(M);
+  slowest_decay = -ev.real().maxCoeff();
+  fastest = ev.cwiseAbs().maxCoeff();
 }
 
 struct Steady {

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +14,7 @@
 #include "firmware/control/monorail_motor_law.hpp"
 #include "firmware/control/precession_brake.hpp"
 #include "firmware/control/servo_gyro_law.hpp"
+#include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab::firmware {
 namespace {
@@ -133,7 +133,7 @@ double slowest_rate(const ActivePrecessionParams& p) {
       0, 0, 0, 1,              //
       -c / A, 0, 0, -p.H / A,  //
       0, -(q + p.centring_stiffness) / p.B, (p.H + p.roll_rate_gain) / p.B, -p.precession_damping / p.B;
-  const Eigen::Vector4cd ev = Eigen::EigenSolver<Eigen::Matrix4d>(M).eigenvalues();
+  const Eigen::Vector4cd ev = dynamics::eigenvalues<4>(M);
   double worst = -1e300;
   for (int i = 0; i < 4; ++i) worst = std::max(worst, ev[i].real());
   return worst;

@@ -5,9 +5,8 @@
 // own yet (tests/oracle/monorail_test.cpp checks the same quartic's roots with its own companion matrix).
 #pragma once
 
-#include <Eigen/Eigenvalues>
-
 #include "firmware/control/monorail_motor_law.hpp"
+#include "sim/dynamics/eigenvalues.hpp"
 #include "sim/models/monorail.hpp"
 
 namespace gyrostab::tools {
@@ -27,7 +26,7 @@ inline double max_real_root(const models::MonorailParams& p, double k, double d,
   Eigen::Matrix4d companion = Eigen::Matrix4d::Zero();
   for (int i = 0; i < 4; ++i) companion(0, i) = -a[i + 1] / a[0];
   for (int i = 1; i < 4; ++i) companion(i, i - 1) = 1.0;
-  return Eigen::EigenSolver<Eigen::Matrix4d>(companion, false).eigenvalues().real().maxCoeff();
+  return dynamics::eigenvalues<4>(companion).real().maxCoeff();
 }
 
 }  // namespace gyrostab::tools

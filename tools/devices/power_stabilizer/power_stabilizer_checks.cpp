@@ -1,8 +1,9 @@
 #include "tools/devices/power_stabilizer/power_stabilizer_checks.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+
+#include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab::tools {
 namespace {
@@ -12,10 +13,10 @@ std::complex<double> nutation_root(const double (&c)[N + 1]) {
   Eigen::Matrix<double, N, N> companion = Eigen::Matrix<double, N, N>::Zero();
   for (int i = 0; i < N; ++i) companion(0, i) = -c[i + 1] / c[0];
   for (int i = 1; i < N; ++i) companion(i, i - 1) = 1.0;
-  Eigen::EigenSolver<Eigen::Matrix<double, N, N>> es(companion, false);
+  const dynamics::EigenvaluesOf<N> ev = dynamics::eigenvalues<N>(companion);
   std::complex<double> best{0.0, 0.0};
   for (int i = 0; i < N; ++i) {
-    if (std::abs(es.eigenvalues()[i].imag()) > std::abs(best.imag())) best = es.eigenvalues()[i];
+    if (std::abs(ev[i].imag()) > std::abs(best.imag())) best = ev[i];
   }
   return {best.real(), std::abs(best.imag())};
 }
