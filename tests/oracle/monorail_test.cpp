@@ -17,7 +17,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
 #include <complex>
@@ -26,6 +25,7 @@
 
 #include "sim/dynamics/rk4.hpp"
 #include "tests/support/alloc_counter.hpp"
+#include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab {
 namespace {
@@ -49,7 +49,7 @@ Eigen::Vector4cd characteristic_roots(const MonorailParams& p, double Omega3) {
   C(1, 3) = -a1 / a4;
   C(2, 3) = -a2 / a4;
   C(3, 3) = -a3 / a4;
-  return Eigen::EigenSolver<Eigen::Matrix4d>(C, false).eigenvalues();
+  return dynamics::eigenvalues<4>(C);
 }
 
 // State matrix of (14.6) for x = [φ, β, φ', β'].
@@ -83,15 +83,15 @@ struct Measured {
 // Simulate from a generic small state and read the dominant mode through its left eigenvector.
 Measured measure_dominant_mode(const MonorailParams& p, double Omega3) {
   const Eigen::Matrix4d M = state_matrix(p, Omega3);
-  const Eigen::EigenSolver<Eigen::Matrix4d> es(M, true);
+  const dynamics::EigenDecomposition es = dynamics::eigen_decomposition(M);
   int i = 0;
   for (int j = 1; j < 4; ++j) {
-    if (es.eigenvalues()[j].real() > es.eigenvalues()[i].real()) i = j;
+    if (es.values[j].real() > es.values[i].real()) i = j;
   }
-  const Eigen::Matrix4cd left = es.eigenvectors().inverse();  // rows: left eigenvectors
+  const Eigen::Matrix4cd left = Eigen::Matrix4cd(es.vectors).inverse();  // rows: left eigenvectors
   const Eigen::Matrix<cd, 1, 4> w = left.row(i);
   Measured m;
-  m.lambda_book = es.eigenvalues()[i];
+  m.lambda_book = es.values[i];
   Monorail model(p);
   model.inputs.Omega3 = Omega3;
   Rk4 integ(model);
@@ -147,7 +147,7 @@ TEST(MonorailOracle, GainWindowAndRootsMatchTheDigest) {
     EXPECT_NEAR(r.real().maxCoeff(), cs.max_re, cs.half_unit) << "k " << cs.k;
     // Same roots from the state matrix of (14.2): the two forms of the linear theory agree.
     const Eigen::Vector4cd e =
-        Eigen::EigenSolver<Eigen::Matrix4d>(state_matrix(digest_car(cs.k), 0.0), false).eigenvalues();
+        dynamics::eigenvalues<4>(state_matrix(digest_car(cs.k), 0.0));
     EXPECT_NEAR(e.real().maxCoeff(), r.real().maxCoeff(), 1e-10);
   }
   // At the window edges the roots cross the imaginary axis at ±iω_P, ±iω_N (the window's derivation).
