@@ -19,6 +19,7 @@
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/hysteresis_crossings.hpp"
 #include "sim/oracles/schuler_tuning.hpp"
+#include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/gyro_pendulum/gyro_pendulum_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
 
@@ -175,27 +176,17 @@ class GyroPendulumRun {
   std::int64_t ticks_{0};
 };
 
-class GyroPendulumDeviceScene final : public DeviceScene {
- public:
-  explicit GyroPendulumDeviceScene(std::unique_ptr<GyroPendulumScene> s) : s_(std::move(s)) {}
-
-  const LoopConfig& loop() const override { return s_->loop; }
-  std::vector<std::string> columns() const override { return tools::columns(); }
-  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
-    return make_plant_port<GyroPendulumRun>(*s_);
-  }
-  std::unique_ptr<ControllerPort> make_controller() const override {
-    return make_controller_port<Controller>(s_->controller);
-  }
-
- private:
-  std::unique_ptr<GyroPendulumScene> s_;
+struct GyroPendulumTraits {
+  using Scene = GyroPendulumScene;
+  using Binding = GyroPendulumRun;
+  using Controller = tools::Controller;
+  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
 };
 
 }  // namespace
 
 std::unique_ptr<DeviceScene> make_gyro_pendulum_scene(std::unique_ptr<GyroPendulumScene> s) {
-  return std::make_unique<GyroPendulumDeviceScene>(std::move(s));
+  return std::make_unique<DeviceSceneOf<GyroPendulumTraits>>(std::move(s));
 }
 
 }  // namespace gyrostab::tools

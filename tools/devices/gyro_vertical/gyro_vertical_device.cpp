@@ -32,7 +32,7 @@ extern const DeviceDescriptor kGyroVertical{
         "`alpha_G_rad`, `beta_G_rad` (z_G of (12.47) in a steady turn); the book neglects the Earth and "
         "transport "
         "rates, whose steady error is ≈ |Ω_h| H/f. `turn_indicator_over_true` (≈ cos(bank), (15.6)). Limits: "
-        "`torquer_limit_Nm`, `turn_cutout_rate_rad_s` (when the cut-out is on). CSV columns: `alpha_rad`, "
+        "`torquer_limit_Nm`, `turn_cutout_rad_s` (when the cut-out is on). CSV columns: `alpha_rad`, "
         "`beta_rad`, `alpha_L_rad`, `beta_L_rad`, `M1_Nm`, `M2_Nm`, `turn_rate_rad_s`, "
         "`turn_indicator_rad_s`, "
         "`status_bits`.",

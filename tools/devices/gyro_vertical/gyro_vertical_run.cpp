@@ -18,6 +18,7 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/manoeuvre_segment_log.hpp"
+#include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/gyro_vertical/gyro_vertical_scene.hpp"
 #include "tools/devices/vehicle_instruments/segments_json.hpp"
 #include "tools/run/error_estimate_report.hpp"
@@ -185,33 +186,23 @@ class GyroVerticalRun {
   std::int64_t ticks_{0};
 };
 
-class GyroVerticalDeviceScene final : public DeviceScene {
- public:
-  explicit GyroVerticalDeviceScene(std::unique_ptr<GyroVerticalScene> s) : s_(std::move(s)) {}
-
-  const LoopConfig& loop() const override { return s_->loop; }
-  std::vector<std::string> columns() const override { return tools::columns(); }
-  nlohmann::json limits() const override {
-    const auto& law = s_->controller.law;
+struct GyroVerticalTraits {
+  using Scene = GyroVerticalScene;
+  using Binding = GyroVerticalRun;
+  using Controller = tools::Controller;
+  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
+  static nlohmann::json limits(const Scene& s) {
+    const auto& law = s.controller.law;
     nlohmann::json l{{"torquer_limit_Nm", law.torque_limit_Nm}};
-    if (law.turn_cutout_rate > 0.0) l["turn_cutout_rate_rad_s"] = law.turn_cutout_rate;
+    if (law.turn_cutout_rate > 0.0) l["turn_cutout_rad_s"] = law.turn_cutout_rate;
     return l;
   }
-  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
-    return make_plant_port<GyroVerticalRun>(*s_);
-  }
-  std::unique_ptr<ControllerPort> make_controller() const override {
-    return make_controller_port<Controller>(s_->controller);
-  }
-
- private:
-  std::unique_ptr<GyroVerticalScene> s_;
 };
 
 }  // namespace
 
 std::unique_ptr<DeviceScene> make_gyro_vertical_scene(std::unique_ptr<GyroVerticalScene> s) {
-  return std::make_unique<GyroVerticalDeviceScene>(std::move(s));
+  return std::make_unique<DeviceSceneOf<GyroVerticalTraits>>(std::move(s));
 }
 
 }  // namespace gyrostab::tools

@@ -20,6 +20,7 @@
 #include "sim/analysis/extrema_meter.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/manoeuvre_segment_log.hpp"
+#include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/gyrocompass/gyrocompass_scene.hpp"
 #include "tools/devices/vehicle_instruments/segments_json.hpp"
 #include "tools/run/error_estimate_report.hpp"
@@ -217,30 +218,18 @@ class GyrocompassRun {
   std::int64_t ticks_{0};
 };
 
-class GyrocompassDeviceScene final : public DeviceScene {
- public:
-  explicit GyrocompassDeviceScene(std::unique_ptr<GyrocompassScene> s) : s_(std::move(s)) {}
-
-  const LoopConfig& loop() const override { return s_->loop; }
-  std::vector<std::string> columns() const override { return tools::columns(); }
-  nlohmann::json limits() const override {
-    return {{"torquer_limit_Nm", s_->controller.law.torque_limit_Nm}};
-  }
-  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
-    return make_plant_port<GyrocompassRun>(*s_);
-  }
-  std::unique_ptr<ControllerPort> make_controller() const override {
-    return make_controller_port<Controller>(s_->controller);
-  }
-
- private:
-  std::unique_ptr<GyrocompassScene> s_;
+struct GyrocompassTraits {
+  using Scene = GyrocompassScene;
+  using Binding = GyrocompassRun;
+  using Controller = tools::Controller;
+  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
+  static nlohmann::json limits(const Scene& s) {     return {{"torquer_limit_Nm", s.controller.law.torque_limit_Nm}}; }
 };
 
 }  // namespace
 
 std::unique_ptr<DeviceScene> make_gyrocompass_scene(std::unique_ptr<GyrocompassScene> s) {
-  return std::make_unique<GyrocompassDeviceScene>(std::move(s));
+  return std::make_unique<DeviceSceneOf<GyrocompassTraits>>(std::move(s));
 }
 
 }  // namespace gyrostab::tools

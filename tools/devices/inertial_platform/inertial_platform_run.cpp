@@ -17,6 +17,7 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/extrema_meter.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/inertial_platform/inertial_platform_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
 
@@ -176,31 +177,21 @@ class InertialPlatformRun {
   std::int64_t ticks_{0};
 };
 
-class InertialPlatformDeviceScene final : public DeviceScene {
- public:
-  explicit InertialPlatformDeviceScene(std::unique_ptr<InertialPlatformScene> s) : s_(std::move(s)) {}
-
-  const LoopConfig& loop() const override { return s_->loop; }
-  std::vector<std::string> columns() const override { return tools::columns(); }
-  nlohmann::json limits() const override {
-    return {{"torquer_limit_Nm", s_->controller.law.torque_limit_Nm}};
+struct InertialPlatformTraits {
+  using Scene = InertialPlatformScene;
+  using Controller = tools::Controller;
+  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
+  static nlohmann::json limits(const Scene& s) {     return {{"torquer_limit_Nm", s.controller.law.torque_limit_Nm}}; }
+  static std::unique_ptr<PlantPort> make_plant(const Scene& s, const PlantOptions&) {
+    if (s.plant.axes == 1) return make_plant_port<InertialPlatformRun<models::SingleAxisPlatform>>(s);
+    return make_plant_port<InertialPlatformRun<models::ThreeAxisPlatform>>(s);
   }
-  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
-    if (s_->plant.axes == 1) return make_plant_port<InertialPlatformRun<models::SingleAxisPlatform>>(*s_);
-    return make_plant_port<InertialPlatformRun<models::ThreeAxisPlatform>>(*s_);
-  }
-  std::unique_ptr<ControllerPort> make_controller() const override {
-    return make_controller_port<Controller>(s_->controller);
-  }
-
- private:
-  std::unique_ptr<InertialPlatformScene> s_;
 };
 
 }  // namespace
 
 std::unique_ptr<DeviceScene> make_inertial_platform_scene(std::unique_ptr<InertialPlatformScene> s) {
-  return std::make_unique<InertialPlatformDeviceScene>(std::move(s));
+  return std::make_unique<DeviceSceneOf<InertialPlatformTraits>>(std::move(s));
 }
 
 }  // namespace gyrostab::tools

@@ -17,6 +17,7 @@
 #include "sim/analysis/running_stats.hpp"
 #include "sim/analysis/window_mean.hpp"
 #include "tools/devices/monorail/monorail_curve.hpp"
+#include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/monorail/monorail_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
 
@@ -223,39 +224,29 @@ class MonorailRun {
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
 };
 
-class MonorailDeviceScene final : public DeviceScene {
- public:
-  explicit MonorailDeviceScene(std::unique_ptr<MonorailScene> s) : s_(std::move(s)) {}
-
-  const LoopConfig& loop() const override { return s_->loop; }
-  std::vector<std::string> columns() const override { return tools::columns(); }
+struct MonorailTraits {
+  using Scene = MonorailScene;
+  using Binding = MonorailRun;
+  using Controller = tools::Controller;
+  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   // The law's torque limit on both axes; no voltage limit (a torque-mode drive: the voltages are unused).
-  hil::ActuatorLimits actuator_limits() const override {
+  static hil::ActuatorLimits actuator_limits(const Scene& s) {
     hil::ActuatorLimits l;
-    l.torque_Nm[0] = l.torque_Nm[1] = s_->controller.law.torque_limit_Nm;
+    l.torque_Nm[0] = l.torque_Nm[1] = s.controller.law.torque_limit_Nm;
     l.from_scene = true;
     return l;
   }
   // The car lies on the ground at |φ| = π/2 (sim/plants/car_on_track.hpp); the case has no end stops.
-  nlohmann::json limits() const override {
-    return {{"motor_torque_limit_Nm", s_->controller.law.torque_limit_Nm},
+  static nlohmann::json limits(const Scene& s) {
+    return {{"motor_torque_limit_Nm", s.controller.law.torque_limit_Nm},
             {"tilt_overturned_rad", 0.5 * std::numbers::pi}};
   }
-  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
-    return make_plant_port<MonorailRun>(*s_);
-  }
-  std::unique_ptr<ControllerPort> make_controller() const override {
-    return make_controller_port<Controller>(s_->controller);
-  }
-
- private:
-  std::unique_ptr<MonorailScene> s_;
 };
 
 }  // namespace
 
 std::unique_ptr<DeviceScene> make_monorail_scene(std::unique_ptr<MonorailScene> s) {
-  return std::make_unique<MonorailDeviceScene>(std::move(s));
+  return std::make_unique<DeviceSceneOf<MonorailTraits>>(std::move(s));
 }
 
 }  // namespace gyrostab::tools

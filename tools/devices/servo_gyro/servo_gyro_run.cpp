@@ -14,6 +14,7 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "tools/devices/servo_gyro/servo_gyro_drive_sums.hpp"
+#include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/servo_gyro/servo_gyro_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
 
@@ -154,37 +155,25 @@ class ServoGyroRun {
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
 };
 
-class ServoGyroDeviceScene final : public DeviceScene {
- public:
-  explicit ServoGyroDeviceScene(std::unique_ptr<ServoGyroScene> s) : s_(std::move(s)) {}
-
-  const LoopConfig& loop() const override { return s_->loop; }
-  std::vector<std::string> columns() const override { return tools::columns(); }
+struct ServoGyroTraits {
+  using Scene = ServoGyroScene;
+  using Binding = ServoGyroRun;
+  using Controller = tools::Controller;
+  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   // The law's torque limit on both axes; no voltage limit (a torque-mode drive: the voltages are unused).
-  hil::ActuatorLimits actuator_limits() const override {
+  static hil::ActuatorLimits actuator_limits(const Scene& s) {
     hil::ActuatorLimits l;
-    l.torque_Nm[0] = l.torque_Nm[1] = s_->controller.law.torque_limit_Nm;
+    l.torque_Nm[0] = l.torque_Nm[1] = s.controller.law.torque_limit_Nm;
     l.from_scene = true;
     return l;
   }
-  nlohmann::json limits() const override {
-    return {{"motor_torque_limit_Nm", s_->controller.law.torque_limit_Nm}};
-  }
-  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
-    return make_plant_port<ServoGyroRun>(*s_);
-  }
-  std::unique_ptr<ControllerPort> make_controller() const override {
-    return make_controller_port<Controller>(s_->controller);
-  }
-
- private:
-  std::unique_ptr<ServoGyroScene> s_;
+  static nlohmann::json limits(const Scene& s) { return {{"motor_torque_limit_Nm", s.controller.law.torque_limit_Nm}}; }
 };
 
 }  // namespace
 
 std::unique_ptr<DeviceScene> make_servo_gyro_scene(std::unique_ptr<ServoGyroScene> s) {
-  return std::make_unique<ServoGyroDeviceScene>(std::move(s));
+  return std::make_unique<DeviceSceneOf<ServoGyroTraits>>(std::move(s));
 }
 
 }  // namespace gyrostab::tools

@@ -11,6 +11,7 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/running_stats.hpp"
+#include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/ship_roll_damper/ship_roll_damper_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
 
@@ -153,34 +154,24 @@ class ShipRollDamperRun {
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
 };
 
-class ShipRollDamperDeviceScene final : public DeviceScene {
- public:
-  explicit ShipRollDamperDeviceScene(std::unique_ptr<ShipRollDamperScene> s) : s_(std::move(s)) {}
-
-  const LoopConfig& loop() const override { return s_->loop; }
-  std::vector<std::string> columns() const override { return tools::columns(); }
-  nlohmann::json limits() const override {
-    const auto& a = s_->controller.active;
-    nlohmann::json l{{"precession_stop_rad", s_->plant.ship.beta_stop},
+struct ShipRollDamperTraits {
+  using Scene = ShipRollDamperScene;
+  using Binding = ShipRollDamperRun;
+  using Controller = tools::Controller;
+  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
+  static nlohmann::json limits(const Scene& s) {
+    const auto& a = s.controller.active;
+    nlohmann::json l{{"precession_stop_rad", s.plant.ship.beta_stop},
                      {"precession_torque_limit_Nm", a.torque_limit_Nm}};
-    if (s_->controller.mode == firmware::ShipRollDamperMode::kActive) l["precession_soft_limit_rad"] = a.beta_soft;
+    if (s.controller.mode == firmware::ShipRollDamperMode::kActive) l["precession_soft_limit_rad"] = a.beta_soft;
     return l;
   }
-  std::unique_ptr<PlantPort> make_plant(const PlantOptions&) const override {
-    return make_plant_port<ShipRollDamperRun>(*s_);
-  }
-  std::unique_ptr<ControllerPort> make_controller() const override {
-    return make_controller_port<Controller>(s_->controller);
-  }
-
- private:
-  std::unique_ptr<ShipRollDamperScene> s_;
 };
 
 }  // namespace
 
 std::unique_ptr<DeviceScene> make_ship_roll_damper_scene(std::unique_ptr<ShipRollDamperScene> s) {
-  return std::make_unique<ShipRollDamperDeviceScene>(std::move(s));
+  return std::make_unique<DeviceSceneOf<ShipRollDamperTraits>>(std::move(s));
 }
 
 }  // namespace gyrostab::tools
