@@ -42,6 +42,14 @@ inline std::string describe(const firmware::ConfigCheck& c) {
   return s.str();
 }
 
+// The scene check's message when the controller's start-up check (Controller::check) refuses the scene's
+// controller configuration; "" when it accepts. A schema::Rule over any scene struct with a `controller`.
+template <class Controller, class Scene>
+std::string controller_refusal(const Scene& s) {
+  const firmware::ConfigCheck check = Controller::check(s.controller);
+  return check.ok ? "" : "refused by the controller's start-up check: " + describe(check);
+}
+
 template <class Controller>
 nlohmann::json controller_report(const Controller& c) {
   return {{"tick", perf_json(c.tick_counters())},

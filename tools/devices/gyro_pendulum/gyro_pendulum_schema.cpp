@@ -60,8 +60,8 @@ constexpr schema::Field<S> kFields[] = {
               GS_NUMBER(detuning)),
     F::choice(
         "pendulum", "start", kStarts,
-        "`equilibrium`: z0 = −H w0/(kR), z0' = −H w0'/(kR) (the book's steady error (12.65)); `vertical`: "
-        "z0 = 0",
+        "`equilibrium`: z0 = −H w0/(kR), z0' = −H w0'/(kR) (the book's steady error (12.65)); `vertical`: z0 "
+        "= 0",
         GS_CHOICE(plant.start)),
     F::number("pendulum", "alpha0_deg", "deg", Range::closed(-10.0, 10.0), "added initial tilt about F1",
               GS_NUMBER(plant.alpha0))
@@ -106,22 +106,17 @@ constexpr schema::Rule<S> kLoopRules[] = {
      }},
     {"segment1", "duration_s",
      "every `[segmentN] duration_s` is a whole number of ticks (the per-tick sampling is exact at corners "
-     "only on "
-     "tick boundaries)",
+     "only on tick boundaries)",
      [](const S& s) -> std::string {
        const char* why = motion::corners_on_ticks(s.plant.vehicle, s.loop.tick_ns);
        return why != nullptr ? why : "";
      }},
     {"loop", "tick_us", "the controller's start-up check (firmware/app/gyro_pendulum_controller.hpp)",
-     [](const S& s) -> std::string {
-       const firmware::ConfigCheck check = Controller::check(s.controller);
-       return check.ok ? "" : "refused by the controller's start-up check: " + describe(check);
-     }},
+     controller_refusal<Controller, S>},
     // The fastest mode: the nutation ω^N (12.61) with spin, else the pendulum's own.
     {"loop", "plant_substeps",
      "the plant sub-step resolves the fastest mode for the integrator: the nutation ω^N (12.61) with spin, "
-     "else "
-     "the pendulum's own frequency sqrt(k/A) (the message gives the `plant_substeps` needed)",
+     "else the pendulum's own frequency sqrt(k/A) (the message gives the `plant_substeps` needed)",
      [](const S& s) -> std::string {
        const auto& g = s.plant.gyro;
        if (!(g.H > 0.0 || g.k() > 0.0)) return "";

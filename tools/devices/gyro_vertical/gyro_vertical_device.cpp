@@ -8,34 +8,28 @@ extern const DeviceDescriptor kGyroVertical{
     .summary =
         "The gyro vertical (gyro horizon) of Magnus §12.3, (12.35)-(12.51), on an aircraft "
         "(sim/plants/gyro_vertical_plant.hpp, sim/models/gyro_vertical.hpp on the master equation (10.22), "
-        "docs/models/gyro-vertical.md) in the track frame (forward, right, down) of the "
-        "[vehicle motion](#vehicle-motion) (default latitude 50°), erected by the firmware's correction law "
+        "docs/models/gyro-vertical.md) in the track frame (forward, right, down) of the [vehicle "
+        "motion](#vehicle-motion) (default latitude 50°), erected by the firmware's correction law "
         "(firmware/app/gyro_vertical_controller.hpp: the five rows of (12.35), the turn cut-out, a torque "
-        "limit). "
-        "Sensors: the erection sensor (tilt from the apparent vertical), gimbal-rate pick-offs, and a turn "
-        "indicator — a P rate gyro with its own dynamics (sim/sensors/rate_integrating_gyro.hpp, "
-        "(15.1)-(15.6)) on "
-        "the aircraft's normal axis (coordinated flight: bank = the apparent vertical's roll angle) — whose "
-        "reading drives the cut-out. Shipped: `sim/scenes/gyro-vertical-aircraft-turn.toml`. Integrator: "
-        "`rk4`; "
-        "the step is checked against the nutation H/sqrt(AB) (full form).",
+        "limit). Sensors: the erection sensor (tilt from the apparent vertical), gimbal-rate pick-offs, and "
+        "a turn indicator — a P rate gyro with its own dynamics (sim/sensors/rate_integrating_gyro.hpp, "
+        "(15.1)-(15.6)) on the aircraft's normal axis (coordinated flight: bank = the apparent vertical's "
+        "roll angle) — whose reading drives the cut-out. Shipped: "
+        "`sim/scenes/gyro-vertical-aircraft-turn.toml`. Integrator: `rk4`; the step is checked against the "
+        "nutation H/sqrt(AB) (full form).",
     .figures =
         "Figures: `delta_s` (f1/H), `omega_P_rad_s` ((c + c1)/H), `resonance_turn_rate_rad_s` (−ω^P), "
         "`indicated_bank_error_max_rad` (max |α|), `alpha_end_rad`, `beta_end_rad`, `H_Nms`, `ticks`, "
         "`nutation_frequency_rad_s` (full form), `prediction_applies` (the law is the linear one: rows 1 and "
-        "4, "
-        "equal on both axes, no friction), and `segments`: per manoeuvre segment (0 = the final cruise) "
+        "4, equal on both axes, no friction), and `segments`: per manoeuvre segment (0 = the final cruise) "
         "`t_start_s`, `t_end_s`, `turn_rate_rad_s` (Ω3), `alpha_L_rad`, `beta_L_rad`, `correction_cut_out`, "
-        "`alpha_end_rad`, `beta_end_rad` beside the book's `alpha_book_end_rad`, `beta_book_end_rad` "
-        "(z = z_eq + (z0 − z_eq) e^(−[δ + i(ω + ω^P)]t) from the segment's start, (12.45)/(12.39)) and the "
-        "steady "
+        "`alpha_end_rad`, `beta_end_rad` beside the book's `alpha_book_end_rad`, `beta_book_end_rad` (z = "
+        "z_eq + (z0 − z_eq) e^(−[δ + i(ω + ω^P)]t) from the segment's start, (12.45)/(12.39)) and the steady "
         "`alpha_G_rad`, `beta_G_rad` (z_G of (12.47) in a steady turn); the book neglects the Earth and "
-        "transport "
-        "rates, whose steady error is ≈ |Ω_h| H/f. `turn_indicator_over_true` (≈ cos(bank), (15.6)). Limits: "
-        "`torquer_limit_Nm`, `turn_cutout_rad_s` (when the cut-out is on). CSV columns: `alpha_rad`, "
-        "`beta_rad`, `alpha_L_rad`, `beta_L_rad`, `M1_Nm`, `M2_Nm`, `turn_rate_rad_s`, "
-        "`turn_indicator_rad_s`, "
-        "`status_bits`.",
+        "transport rates, whose steady error is ≈ |Ω_h| H/f. `turn_indicator_over_true` (≈ cos(bank), "
+        "(15.6)). Limits: `torquer_limit_Nm`, `turn_cutout_rad_s` (when the cut-out is on). CSV columns: "
+        "`alpha_rad`, `beta_rad`, `alpha_L_rad`, `beta_L_rad`, `M1_Nm`, `M2_Nm`, `turn_rate_rad_s`, "
+        "`turn_indicator_rad_s`, `status_bits`.",
     .read = read_gyro_vertical,
     .doc = gyro_vertical_doc,
     .can_nodes = can::kAllNodes,

@@ -34,8 +34,7 @@ constexpr schema::Field<S> kFields[] = {
               GS_NUMBER(plant.gyro.c)),
     F::number("gyro", "d1", "N m s/rad", Range::non_negative(),
               "viscous bearing friction axis 1, row 2; in the full form d/A must exceed the correction rate "
-              "f/H, or "
-              "the nutation grows (the correction is a circulatory force)",
+              "f/H, or the nutation grows (the correction is a circulatory force)",
               GS_NUMBER(plant.gyro.d1)),
     F::number("gyro", "d2", "N m s/rad", Range::non_negative(), "viscous bearing friction axis 2, row 2",
               GS_NUMBER(plant.gyro.d2)),
@@ -107,8 +106,7 @@ constexpr schema::Field<S> kFields[] = {
 constexpr schema::Rule<S> kRules[] = {
     {"gyro", "H",
      "`[gyro]`: H > 0, A, B > 0 in the full form, the friction coefficients ≥ 0, and Coulomb friction (r1, "
-     "r2) only "
-     "in the full form (the precession form cannot resolve sticking)",
+     "r2) only in the full form (the precession form cannot resolve sticking)",
      [](const S& s) -> std::string {
        const char* why = s.plant.gyro.invalid_reason();
        return why != nullptr ? why : "";
@@ -122,25 +120,20 @@ constexpr schema::Rule<S> kRules[] = {
 
 constexpr schema::Rule<S> kLoopRules[] = {
     {"segment1", "duration_s",
-     "every `[segmentN] duration_s` is a whole number of ticks (a manoeuvre corner inside a tick costs "
-     "an O(h·Δa) error)",
+     "every `[segmentN] duration_s` is a whole number of ticks (a manoeuvre corner inside a tick costs an "
+     "O(h·Δa) error)",
      [](const S& s) -> std::string {
        const char* why = motion::corners_on_ticks(s.plant.vehicle, s.loop.tick_ns);
        return why != nullptr ? why : "";
      }},
     {"controller", "f1",
      "the controller's start-up check (firmware/app/gyro_vertical_controller.hpp): the sampled loop's limits "
-     "of "
-     "the five rows at the control period",
-     [](const S& s) -> std::string {
-       const firmware::ConfigCheck check = Controller::check(s.controller);
-       return check.ok ? "" : "refused by the controller's start-up check: " + describe(check);
-     }},
+     "of the five rows at the control period",
+     controller_refusal<Controller, S>},
     // The linear rows close a loop whose nutation the precession theory does not see (model header).
     {"gyro", "d1",
      "full form: the closed loop linearized at rest has no growing mode — the correction rows are "
-     "circulatory "
-     "forces that feed the nutation unless the bearing damping d/A exceeds about f/H",
+     "circulatory forces that feed the nutation unless the bearing damping d/A exceeds about f/H",
      [](const S& s) -> std::string {
        const auto& g = s.plant.gyro;
        const auto& l = s.controller.law;

@@ -132,12 +132,8 @@ constexpr schema::Rule<S> kLoopRules[] = {
      }},
     {"controller", "f",
      "the controller's start-up check (firmware/app/gyrocompass_controller.hpp): the sampled loop's limits "
-     "of f "
-     "and c_e at the control period",
-     [](const S& s) -> std::string {
-       const firmware::ConfigCheck check = Controller::check(s.controller);
-       return check.ok ? "" : "refused by the controller's start-up check: " + describe(check);
-     }},
+     "of f and c_e at the control period",
+     controller_refusal<Controller, S>},
     {"vehicle", "latitude_deg",
      "|start latitude| ≤ 85°: a gyrocompass has no directive torque near the poles (13.6)",
      [](const S& s) -> std::string {
@@ -160,8 +156,7 @@ constexpr schema::Rule<S> kLoopRules[] = {
      }},
     {"loop", "plant_substeps",
      "RK4's plant sub-step resolves the compass's fastest mode at rest at the design latitude (the message "
-     "gives "
-     "the `plant_substeps` needed)",
+     "gives the `plant_substeps` needed)",
      [](const S& s) -> std::string {
        const double we = s.plant.vehicle.earth.rotation_rate, lat = design_latitude(s);
        models::Gyrocompass m(s.plant.gyro);

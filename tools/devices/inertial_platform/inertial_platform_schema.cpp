@@ -114,10 +114,7 @@ constexpr schema::Rule<S> kLoopRules[] = {
     {"controller", "radius_m",
      "the controller's start-up check (firmware/app/inertial_platform_controller.hpp): the Schuler loops' "
      "sampled limits at the control period",
-     [](const S& s) -> std::string {
-       const firmware::ConfigCheck check = Controller::check(s.controller);
-       return check.ok ? "" : "refused by the controller's start-up check: " + describe(check);
-     }},
+     controller_refusal<Controller, S>},
     {"loop", "plant_substeps",
      "RK4's plant sub-step resolves the servo modes at rest (the message gives the `plant_substeps` needed)",
      [](const S& s) -> std::string {

@@ -8,16 +8,16 @@ extern const DeviceDescriptor kMonorail{
     .summary =
         "The gyro-stabilized monorail car of Magnus §14.1, (14.1)-(14.7) (sim/plants/monorail_plant.hpp: "
         "sim/models/monorail.hpp with large-angle terms, docs/models/monorail.md): the car tilting by φ "
-        "about the rail, the top-heavy gyro case at β on axis 2, held upright by the firmware motor law M2 "
-        "= k φ − d β' (firmware/app/monorail_controller.hpp). The plant's analog law k is 0 (the firmware "
-        "is the motor law); its damper `d_mechanical` is passive. The track runs straight, then through a "
-        "curve (curve running (14.6): the path turns at Ω3(t)), with a side-wind gust. Shipped: "
-        "`sim/scenes/monorail.toml`. Integrator: `rk4` (the only one).\n\n"
-        "What the plant adds to the model (sim/plants/car_on_track.hpp): the centrifugal moments of the "
-        "curve, a = v Ω3 the lateral acceleration, M1 += (a/g)(c cosφ − q cosφ (1 − cosβ)), M2 += −(a/g) q "
-        "sinφ sinβ (the model neglects the tilt of the apparent vertical; to first order the moment c a/g "
-        "on the car); the brake on axis 2 in the safe state; and the ground: a car that reaches |φ| = π/2 "
-        "lies on its side (φ held, the model no longer applies).",
+        "about the rail, the top-heavy gyro case at β on axis 2, held upright by the firmware motor law M2 = "
+        "k φ − d β' (firmware/app/monorail_controller.hpp). The plant's analog law k is 0 (the firmware is "
+        "the motor law); its damper `d_mechanical` is passive. The track runs straight, then through a curve "
+        "(curve running (14.6): the path turns at Ω3(t)), with a side-wind gust. Shipped: "
+        "`sim/scenes/monorail.toml`. Integrator: `rk4` (the only one).\n\nWhat the plant adds to the model "
+        "(sim/plants/car_on_track.hpp): the centrifugal moments of the curve, a = v Ω3 the lateral "
+        "acceleration, M1 += (a/g)(c cosφ − q cosφ (1 − cosβ)), M2 += −(a/g) q sinφ sinβ (the model neglects "
+        "the tilt of the apparent vertical; to first order the moment c a/g on the car); the brake on axis 2 "
+        "in the safe state; and the ground: a car that reaches |φ| = π/2 lies on its side (φ held, the model "
+        "no longer applies).",
     .figures =
         "Figures: `tilt_rms_rad`, `tilt_max_rad` (after settle_s), `case_angle_max_rad`, "
         "`motor_torque_max_Nm`; the gain window `k_lo_Nm_per_rad`, `k_hi_Nm_per_rad` with the configured "

@@ -136,8 +136,8 @@ std::string curve_problem(const S& s) {
   if (p.c > p.H * W && p.H * W > p.q) {
     std::snprintf(
         msg, sizeof msg,
-        "= %g: H Omega3 = %g lies between q = %g and c = %g, (14.7): the car overturns in the curve "
-        "for every gain; keep |Omega3| < q/H = %g (or set allow_unstable_curve = true to watch it)",
+        "= %g: H Omega3 = %g lies between q = %g and c = %g, (14.7): the car overturns in the curve for "
+        "every gain; keep |Omega3| < q/H = %g (or set allow_unstable_curve = true to watch it)",
         W, p.H * W, p.q, p.c, p.q / p.H);
   } else {
     const firmware::MonorailGainWindow w = firmware::monorail_gain_window(law_in_curve(l, W));
@@ -173,21 +173,16 @@ constexpr schema::Rule<S> kRules[] = {
      [](const S& s) -> std::string { return gust_ordered(s) ? "" : "must be <= duration_s"; }},
     {"controller", "k",
      "the controller's start-up check (firmware/app/monorail_controller.hpp): a gyro strong enough for a "
-     "gain "
-     "window, H > sqrt(qA) + sqrt(cB) (14.4); d + d_mechanical > 0; k inside the window d(c + Aω_P²)/H < k < "
-     "d(c + Aω_N²)/H of (14.5), d the total damper; the sampled damper d T/B ≤ 0.5 (the message gives the "
-     "bounds)",
+     "gain window, H > sqrt(qA) + sqrt(cB) (14.4); d + d_mechanical > 0; k inside the window d(c + Aω_P²)/H "
+     "< k < d(c + Aω_N²)/H of (14.5), d the total damper; the sampled damper d T/B ≤ 0.5 (the message gives "
+     "the bounds)",
      [](const S& s) -> std::string {
-       if (!consistent(s)) return "";
-       const firmware::ConfigCheck check = Controller::check(s.controller);
-       return check.ok ? "" : "refused by the controller's start-up check: " + describe(check);
+       return consistent(s) ? controller_refusal<Controller>(s) : "";
      }},
     {"track", "Omega3",
      "with a curve, unless allow_unstable_curve: the loop of (14.6) with the firmware law is stable at the "
-     "curve's "
-     "Ω3 (refused in particular for (14.7) c > HΩ3 > q, where the car overturns for every gain: the message "
-     "gives "
-     "q/H)",
+     "curve's Ω3 (refused in particular for (14.7) c > HΩ3 > q, where the car overturns for every gain: the "
+     "message gives q/H)",
      [](const S& s) -> std::string {
        if (!consistent(s) || !Controller::check(s.controller).ok) return "";
        return curve_problem(s);

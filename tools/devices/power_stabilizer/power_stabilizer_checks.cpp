@@ -31,17 +31,17 @@ bool check_power_stabilizer_plant(SceneReader& r, PowerStabilizerScene& s) {
 
 std::vector<std::string> power_stabilizer_plant_rules() {
   return {
-      "the plant built with the scene's options is physically possible (inertias > 0; back_emf: s > 0, d ≥ 0; "
-      "elastic: c, AP > 0)",
-      "the controller's start-up check (firmware/app/power_stabilizer_controller.hpp) with A, B as the plant has "
-      "them: the Hurwitz test (14.25), or r < H d/A (14.30) with back_emf",
-      "the loop (14.23)/(14.29) linearised at the inner gimbal's operating points — `beta0_deg` and the steady "
-      "deflection M1/k1 (14.21) — with H cos β and I(β) passes the same test, else \"gimbal-lock approach\" names "
-      "the angle and the coupling",
-      "the plant step resolves the fastest mode (step validation: the sub-steps needed are printed); dc_motor: "
-      "the step is below the explicit drive coupling's 2J/(b + b_e)",
-      "precession: ε = ω_P/ω_N < 0.1 at the operating point, no `dc_motor`; the full model for the comparison "
-      "needs at most 100000 sub-steps",
+      "the plant built with the scene's options is physically possible (inertias > 0; back_emf: s > 0, d ≥ "
+      "0; elastic: c, AP > 0)",
+      "the controller's start-up check (firmware/app/power_stabilizer_controller.hpp) with A, B as the plant "
+      "has them: the Hurwitz test (14.25), or r < H d/A (14.30) with back_emf",
+      "the loop (14.23)/(14.29) linearised at the inner gimbal's operating points — `beta0_deg` and the "
+      "steady deflection M1/k1 (14.21) — with H cos β and I(β) passes the same test, else \"gimbal-lock "
+      "approach\" names the angle and the coupling",
+      "the plant step resolves the fastest mode (step validation: the sub-steps needed are printed); "
+      "dc_motor: the step is below the explicit drive coupling's 2J/(b + b_e)",
+      "precession: ε = ω_P/ω_N < 0.1 at the operating point, no `dc_motor`; the full model for the "
+      "comparison needs at most 100000 sub-steps",
   };
 }
 

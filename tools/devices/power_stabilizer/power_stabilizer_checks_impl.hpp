@@ -54,8 +54,8 @@ void check_operating_points(SceneReader& r, PowerStabilizerScene& s, const Plant
     if (!g.accepted) {
       char buf[320];
       std::snprintf(buf, sizeof buf,
-                    "gimbal-lock approach: at beta = %.4g deg (%s) the gyroscopic coupling falls to H cos beta = %.4g "
-                    "N m s (from %.4g) and the stabilization loop is unstable there: ",
+                    "gimbal-lock approach: at beta = %.4g deg (%s) the gyroscopic coupling falls to H cos "
+                    "beta = %.4g N m s (from %.4g) and the stabilization loop is unstable there: ",
                     beta * 180.0 / std::numbers::pi, what[i], l.H * std::cos(beta), l.H);
       r.fail(i == 0 ? "initial" : "controller", i == 0 ? "beta0_deg" : (s.back_emf() ? "r" : "k1"),
              std::string(buf) + g.reason + " (gain margin there " + std::to_string(g.gain_scale_max) + ")");
@@ -78,9 +78,8 @@ bool check_plant(SceneReader& r, PowerStabilizerScene& s) {
   auto& l = s.controller.loops;
   l.A = plant.outer_axis_inertia();
   l.B = plant.gyro().params().B();
-  const firmware::ConfigCheck check = Controller::check(s.controller);
-  if (!check.ok) {
-    r.fail("controller", s.back_emf() ? "r" : "k1", "refused by the controller's start-up check: " + describe(check));
+  if (const std::string why = controller_refusal<Controller>(s); !why.empty()) {
+    r.fail("controller", s.back_emf() ? "r" : "k1", why);
   }
   check_operating_points(r, s, plant);
   typename Plant::State x0;
@@ -117,8 +116,9 @@ template <class Motor>
 bool check_reduced(SceneReader& r, PowerStabilizerScene& s) {
   if (s.dc_drive()) {
     r.fail("drive", "kind",
-           "fidelity = \"precession\" (P0) drops the gimbal inertia that a drive on a gimbal axis acts on (the "
-           "drive's stick and its stable step need it): use [drive] kind = \"torque\", or fidelity = \"full\"");
+           "fidelity = \"precession\" (P0) drops the gimbal inertia that a drive on a gimbal axis acts on "
+           "(the drive's stick and its stable step need it): use [drive] kind = \"torque\", or fidelity = "
+           "\"full\"");
     return false;
   }
   if (!check_plant<Motor, models::RigidStructure, models::PrecessionOnly>(r, s)) return false;
@@ -142,9 +142,9 @@ bool check_reduced(SceneReader& r, PowerStabilizerScene& s) {
   if (!(eps < kEpsMax)) {
     char buf[400];
     std::snprintf(buf, sizeof buf,
-                  "the precession model P0 does not hold here: eps = omega_P/omega_N = %.3g (omega_P = %.4g rad/s, "
-                  "omega_N = %.4g rad/s at beta = %.4g deg%s) is not << 1 (refused at eps >= %.2g; P0's error is "
-                  "O(eps), docs/models/gimbal-gyro.md)%s",
+                  "the precession model P0 does not hold here: eps = omega_P/omega_N = %.3g (omega_P = %.4g "
+                  "rad/s, omega_N = %.4g rad/s at beta = %.4g deg%s) is not << 1 (refused at eps >= %.2g; "
+                  "P0's error is O(eps), docs/models/gimbal-gyro.md)%s",
                   eps, omega_P, omega_N, beta_op * 180.0 / std::numbers::pi,
                   beta_op > 1.0 ? ", near gimbal lock where P0 is singular: H cos beta -> 0" : "", kEpsMax,
                   beta_op > 1.0 ? "; use fidelity = \"full\"" : "; use fidelity = \"full\" or a faster rotor");
@@ -174,8 +174,8 @@ bool check_reduced(SceneReader& r, PowerStabilizerScene& s) {
                         {"alpha_rad_bound", a_bound},
                         {"beta_rad_bound", b_bound},
                         {"bounds_from", "docs/models/gimbal-gyro.md#precession-model-p0: |alpha| <= 2MB/H^2, "
-                                        "|beta - Mt/H| <= M/(H omega_N); relative error O(eps) of the precession "
-                                        "response"}};
+                                        "|beta - Mt/H| <= M/(H omega_N); relative error O(eps) of the "
+                                        "precession response"}};
   // The full model's loop: its default integrator, with the sub-steps its step validation asks for.
   s.full_loop = s.loop;
   s.full_loop.integrator = "gyro-exponential";

@@ -66,30 +66,32 @@ std::unique_ptr<DeviceScene> read_power_stabilizer(SceneReader& r) {
 extern const DeviceDescriptor kPowerStabilizer{
     .name = "power_stabilizer",
     .summary =
-        "The two-axis power gyro stabilizer of Magnus §14.3, (14.19)-(14.40) (sim/plants/power_stabilizer_plant.hpp, "
-        "docs/models/power-stabilizer.md): the full nonlinear gimbal gyro (10.4) on a rolling base with "
-        "disturbance torque steps, encoders and rate gyros, under the firmware's stabilization loops (gains checked "
-        "against (14.25) / (14.30) at start-up). The option keys (`structure`, `motor`, `fidelity`, `[drive] kind`) "
-        "pick the plant's variant once at start-up; an option that is off costs nothing. Shipped: "
-        "`sim/scenes/power-stabilizer.toml` (ideal torque motors), `sim/scenes/power-stabilizer-precession.toml` "
-        "(the same in the precession model P0, compared with the full model), `sim/scenes/power-stabilizer-drive.toml` "
-        "(DC motors, gears, current loops at 10 kHz). Integrators: `gyro-exponential` (default) or `rk4` for the "
-        "rigid gyro; `rk4` only when elastic or in the precession model.",
+        "The two-axis power gyro stabilizer of Magnus §14.3, (14.19)-(14.40) "
+        "(sim/plants/power_stabilizer_plant.hpp, docs/models/power-stabilizer.md): the full nonlinear gimbal "
+        "gyro (10.4) on a rolling base with disturbance torque steps, encoders and rate gyros, under the "
+        "firmware's stabilization loops (gains checked against (14.25) / (14.30) at start-up). The option "
+        "keys (`structure`, `motor`, `fidelity`, `[drive] kind`) pick the plant's variant once at start-up; "
+        "an option that is off costs nothing. Shipped: `sim/scenes/power-stabilizer.toml` (ideal torque "
+        "motors), `sim/scenes/power-stabilizer-precession.toml` (the same in the precession model P0, "
+        "compared with the full model), `sim/scenes/power-stabilizer-drive.toml` (DC motors, gears, current "
+        "loops at 10 kHz). Integrators: `gyro-exponential` (default) or `rk4` for the rigid gyro; `rk4` only "
+        "when elastic or in the precession model.",
     .figures =
-        "Figures: `nutation_frequency_rad_s`, `nutation_decay_rate_per_s` (measured on α' at the law's rate) and "
-        "`_predicted` ((14.23), or (14.29) with back_emf; A with reflected inertia and, elastic, A^P), `steady_*` and "
-        "`_predicted` (14.21), `gain_margin`, motor torque peaks; dc_motor: `motor{1,2}_current_peak_A`, "
-        "`motor{1,2}_voltage_peak_V`, `reflected_inertia_kg_m2`, `drive_peak_torque_Nm`; back_emf: "
-        "`r_max_V_per_rad`, `motor1_voltage_peak_V`; elastic: `platform_frequency_rad_s_predicted` (14.37), "
-        "`effective_stiffness_Nm_per_rad_predicted` (14.35), `alpha_over_phi_predicted` (14.33), "
-        "`steady_platform_rad`; with `beta0_deg` ≠ 0: `operating_point_beta_rad`, and the `_predicted` nutation is "
-        "the loop's root at β0; precession: the measured nutation is null. report.json `\"plant\"`: model, "
-        "fidelity, the components in the loop, `state_size`, integrator. `\"reduced_model\"` (precession): "
-        "`epsilon` = ω_P/ω_N, the a-priori bounds `alpha_rad_bound`, `beta_rad_bound` "
-        "(docs/models/gimbal-gyro.md#precession-model-p0), `measured_error` (largest and RMS |P0 − full| of α, β), "
-        "`within_bounds`, `full_model`; `timing.reduced_model`: both loops' wall times. `\"drift\"` "
-        "(drift_period_s > 0): `max_departure` per signal, `max_departure_so_far` at 10³ … 10⁷ ticks, `bound_rad` "
-        "(two encoder counts), `within_bound`. docs/extreme.md has the stiff and extreme cases.",
+        "Figures: `nutation_frequency_rad_s`, `nutation_decay_rate_per_s` (measured on α' at the law's rate) "
+        "and `_predicted` ((14.23), or (14.29) with back_emf; A with reflected inertia and, elastic, A^P), "
+        "`steady_*` and `_predicted` (14.21), `gain_margin`, motor torque peaks; dc_motor: "
+        "`motor{1,2}_current_peak_A`, `motor{1,2}_voltage_peak_V`, `reflected_inertia_kg_m2`, "
+        "`drive_peak_torque_Nm`; back_emf: `r_max_V_per_rad`, `motor1_voltage_peak_V`; elastic: "
+        "`platform_frequency_rad_s_predicted` (14.37), `effective_stiffness_Nm_per_rad_predicted` (14.35), "
+        "`alpha_over_phi_predicted` (14.33), `steady_platform_rad`; with `beta0_deg` ≠ 0: "
+        "`operating_point_beta_rad`, and the `_predicted` nutation is the loop's root at β0; precession: the "
+        "measured nutation is null. report.json `\"plant\"`: model, fidelity, the components in the loop, "
+        "`state_size`, integrator. `\"reduced_model\"` (precession): `epsilon` = ω_P/ω_N, the a-priori "
+        "bounds `alpha_rad_bound`, `beta_rad_bound` (docs/models/gimbal-gyro.md#precession-model-p0), "
+        "`measured_error` (largest and RMS |P0 − full| of α, β), `within_bounds`, `full_model`; "
+        "`timing.reduced_model`: both loops' wall times. `\"drift\"` (drift_period_s > 0): `max_departure` "
+        "per signal, `max_departure_so_far` at 10³ … 10⁷ ticks, `bound_rad` (two encoder counts), "
+        "`within_bound`. docs/extreme.md has the stiff and extreme cases.",
     .read = read_power_stabilizer,
     .doc = power_stabilizer_doc,
     .can_nodes = can::kNodeDrive1 | can::kNodeDrive2,

@@ -31,13 +31,14 @@ constexpr schema::Field<S> kOptions[] = {
     F::choice("gyro", "structure", kStructures, "platform: rigid, or elastic shaft to the gyro (14.31)",
               GS_CHOICE(structure)),
     F::choice("gyro", "motor", kMotors,
-              "axis-1 stabilization motor: torque-controlled (the law's torques act), or geared back-EMF motor with "
-              "the voltage law (14.26)-(14.27)",
+              "axis-1 stabilization motor: torque-controlled (the law's torques act), or geared back-EMF "
+              "motor with the voltage law (14.26)-(14.27)",
               GS_CHOICE(motor)),
     F::choice("gyro", "fidelity", kFidelities,
-              "gyro model: full gimbal gyro (10.4), or `precession`: the reduced model P0 (10.19)-(10.22) (3 states, "
-              "no nutation, rk4), run beside the full model on the same scene (report.json \"reduced_model\"); "
-              "refused with `elastic`, `dc_motor`, and where ε = ω_P/ω_N ≥ 0.1 at the operating point",
+              "gyro model: full gimbal gyro (10.4), or `precession`: the reduced model P0 (10.19)-(10.22) (3 "
+              "states, no nutation, rk4), run beside the full model on the same scene (report.json "
+              "\"reduced_model\"); refused with `elastic`, `dc_motor`, and where ε = ω_P/ω_N ≥ 0.1 at the "
+              "operating point",
               GS_CHOICE(fidelity)),
 };
 
@@ -86,8 +87,8 @@ constexpr schema::Field<S> kFields[] = {
               GS_NUMBER(plant.alpha0))
         .degrees(),
     F::number("initial", "beta0_deg", "deg", Range::closed(-89.99, 89.99),
-              "initial inner-gimbal angle, at rest; the loop (14.23) is checked there with the coupling H cos β0 "
-              "(gimbal-lock approach)",
+              "initial inner-gimbal angle, at rest; the loop (14.23) is checked there with the coupling H "
+              "cos β0 (gimbal-lock approach)",
               GS_NUMBER(plant.beta0))
         .degrees(),
     F::number("base", "roll_amplitude_rad", "rad", Range::closed(0.0, 0.5), "harmonic base roll amplitude",
@@ -117,8 +118,8 @@ constexpr schema::Field<S> kFields[] = {
     F::integer("sensors", "encoder_counts_per_rev", "counts/rev", 16, 1 << 30, "gimbal encoder (torque drive)",
                GS_INTEGER(plant.encoder_counts_per_rev)),
     F::choice("drive", "kind", kDrives,
-              "gimbal drives: ideal torque motors, or `dc_motor`: DC motors with gears and current loops on both axes "
-              "(not with motor = back_emf)",
+              "gimbal drives: ideal torque motors, or `dc_motor`: DC motors with gears and current loops on "
+              "both axes (not with motor = back_emf)",
               GS_CHOICE(drive)),
     F::number("drive", "R_ohm", "Ω", Range::closed(1e-4, 1e4), "winding resistance", GS_NUMBER(plant.drive.motor.R))
         .req()
@@ -204,16 +205,16 @@ constexpr schema::Field<S> kFields[] = {
               GS_NUMBER(torque_limit_Nm))
         .when(torque_law, "torque"),
     F::number("report", "nutation_window_s", "s", Range::positive(),
-              "window after the first disturbance step for the nutation measurement (a step at t = 0 is a load, not "
-              "a step)",
+              "window after the first disturbance step for the nutation measurement (a step at t = 0 is a "
+              "load, not a step)",
               GS_NUMBER(measure_window_s)),
     F::number("report", "drift_period_s", "s", Range::non_negative(),
-              "periodic-drift monitor: the period of the forcing (a whole number of ticks and of base roll periods); "
-              "0: off",
+              "periodic-drift monitor: the period of the forcing (a whole number of ticks and of base roll "
+              "periods); 0: off",
               GS_NUMBER(drift_period_s)),
     F::number("report", "drift_from_s", "s", Range::non_negative(),
-              "start of the monitor's reference period, after the transients; + 2 periods ≤ duration_s; only with "
-              "drift_period_s > 0",
+              "start of the monitor's reference period, after the transients; + 2 periods ≤ duration_s; only "
+              "with drift_period_s > 0",
               GS_NUMBER(drift_from_s)),
 };
 
@@ -232,20 +233,21 @@ constexpr schema::Rule<S> kRules[] = {
     {"gyro", "rpm", "rpm > 0: a power stabilizer needs a spinning rotor",
      [](const S& s) -> std::string {
        return s.rpm == 0.0 ? "zero spin: without H there is no gyroscopic coupling, and the loops (14.19) are then a "
-                             "circulatory coupling of two inertias that no damping stabilises (the H (k1 + k2) term of "
-                             "(14.23) vanishes, D3 = -(A d2 + B d1)^2 k1 k2 < 0); a power stabilizer needs a spinning "
-                             "rotor"
+                             "circulatory coupling of two inertias that no damping stabilises (the H (k1 + "
+                             "k2) term of (14.23) vanishes, D3 = -(A d2 + B d1)^2 k1 k2 < 0); a power "
+                             "stabilizer needs a spinning rotor"
                            : "";
      }},
     {"gyro", "AA",
-     "P = AA + CJ > 0: the outer axis keeps inertia at gimbal lock (I(β) = A cos²β + P sin²β), where (10.4) would "
-     "otherwise be singular",
+     "P = AA + CJ > 0: the outer axis keeps inertia at gimbal lock (I(β) = A cos²β + P sin²β), where (10.4) "
+     "would otherwise be singular",
      [](const S& s) -> std::string {
        return s.gyro.AA + s.gyro.CJ > 0.0
                   ? ""
                   : "P = AA + CJ = 0: the outer-axis inertia I(beta) = A cos^2 beta + P sin^2 beta vanishes at gimbal "
-                    "lock (beta = 90 deg) and the gimbal equations (10.4) become singular there; give the outer gimbal "
-                    "or the inner gimbal's C^J some inertia (docs/models/gimbal-gyro.md: keep P > 0)";
+                    "lock (beta = 90 deg) and the gimbal equations (10.4) become singular there; give the "
+                    "outer gimbal or the inner gimbal's C^J some inertia (docs/models/gimbal-gyro.md: keep P "
+                    "> 0)";
      }},
     {"gyro", "AR", "2 A^R ≥ C^R (the rotor's inertia triangle, Magnus (1.10))", triangle},
     {"sensors", "rate_bandwidth_hz", "the rate gyro's bandwidth lies below the Nyquist frequency of the base tick",

@@ -105,17 +105,13 @@ constexpr schema::Rule<S> kRules[] = {
      }},
     {"controller", "rate_kp",
      "the controller's start-up check (firmware/app/servo_gyro_controller.hpp): the PI rate loop holds at "
-     "the "
-     "control period T, k_p T/B ≤ 0.5",
+     "the control period T, k_p T/B ≤ 0.5",
      [](const S& s) -> std::string {
-       if (!possible(s)) return "";
-       const firmware::ConfigCheck check = Controller::check(s.controller);
-       return check.ok ? "" : "refused by the controller's start-up check: " + describe(check);
+       return possible(s) ? controller_refusal<Controller>(s) : "";
      }},
     {"loop", "plant_substeps",
      "the plant step resolves the gyro's fastest mode (oscillator or nutation) at β' = Ω; the message gives "
-     "the "
-     "plant_substeps needed",
+     "the plant_substeps needed",
      [](const S& s) -> std::string { return possible(s) ? plant_step_problem(s, 0.0) : ""; }},
     {"gyro", "brake_full_Nms", "the plant step also resolves the gyro held by the safe state's brake",
      [](const S& s) -> std::string {

@@ -7,24 +7,25 @@ namespace gyrostab::tools {
 extern const DeviceDescriptor kShipRollDamper{
     .name = "ship_roll_damper",
     .summary =
-        "The gyroscopic ship roll damper of Magnus §14.2, (14.8), with large-angle terms and precession end stops "
-        "(sim/plants/ship_roll_damper_plant.hpp, docs/models/ship-roll-damper.md), in a regular or irregular beam "
-        "sea, under the firmware's passive precession brake or active precession control. The same ship with the "
-        "gyro locked runs in the same sea as the unstabilized reference. Shipped: "
+        "The gyroscopic ship roll damper of Magnus §14.2, (14.8), with large-angle terms and precession end "
+        "stops (sim/plants/ship_roll_damper_plant.hpp, docs/models/ship-roll-damper.md), in a regular or "
+        "irregular beam sea, under the firmware's passive precession brake or active precession control. The "
+        "same ship with the gyro locked runs in the same sea as the unstabilized reference. Shipped: "
         "`sim/scenes/ship-roll-damper-passive.toml`, `sim/scenes/ship-roll-damper-active.toml`. Integrator: "
         "`rk4` (the only one).",
     .figures =
         "The passive keys are refused with `law = \"active\"` and the active keys with `law = \"passive\"`. "
         "Figures: `roll_rms_rad`, `roll_rms_unstabilized_rad`, `roll_reduction` (their ratio σ/σ₀), "
         "`roll_max_rad`, `roll_max_unstabilized_rad`, `precession_max_rad`, `precession_torque_max_Nm`, "
-        "`wave_moment_rms_Nm`, `statistics_from_s`, `stop_penetration_max_rad` and `stop_penetration_bound_rad` "
-        "(the end stops' largest penetration, and the bound the run's peaks allow: (H|φ'|max + |M2|max + "
-        "|Q|φ'²max/2)/k_s + |β'|max/ω_s, /e for ζ_s ≥ 1). report.json `\"plant\"`: the assembled model and its "
-        "state size (4 + the locked reference's 4); `\"limits\"`: `precession_stop_rad`, "
-        "`precession_torque_limit_Nm` and, active, `precession_soft_limit_rad`. No reduced model is offered for "
-        "the ship: (14.8) keeps both inertias (roll A, case B) — nutation and precession — and a ship gyro has no "
-        "scale separation between them (ω_N = H/sqrt(AB) ≈ 1.5 rad/s against the roll's 0.6 rad/s for the "
-        "default ship, ε = O(1)), so the precession theory P0 does not hold (docs/models/gimbal-gyro.md).",
+        "`wave_moment_rms_Nm`, `statistics_from_s`, `stop_penetration_max_rad` and "
+        "`stop_penetration_bound_rad` (the end stops' largest penetration, and the bound the run's peaks "
+        "allow: (H|φ'|max + |M2|max + |Q|φ'²max/2)/k_s + |β'|max/ω_s, /e for ζ_s ≥ 1). report.json "
+        "`\"plant\"`: the assembled model and its state size (4 + the locked reference's 4); `\"limits\"`: "
+        "`precession_stop_rad`, `precession_torque_limit_Nm` and, active, `precession_soft_limit_rad`. No "
+        "reduced model is offered for the ship: (14.8) keeps both inertias (roll A, case B) — nutation and "
+        "precession — and a ship gyro has no scale separation between them (ω_N = H/sqrt(AB) ≈ 1.5 rad/s "
+        "against the roll's 0.6 rad/s for the default ship, ε = O(1)), so the precession theory P0 does not "
+        "hold (docs/models/gimbal-gyro.md).",
     .read = read_ship_roll_damper,
     .doc = ship_roll_damper_doc,
     .can_nodes = can::kNodeImu | can::kNodeDrive2,  // roll sensor; one precession axis (2)

@@ -144,12 +144,9 @@ constexpr schema::Rule<S> kRules[] = {
        return why != nullptr ? why : "";
      }},
     {"controller", "law",
-     "the controller's start-up check (firmware/app/ship_roll_damper_controller.hpp): the sampled loop's limits for "
-     "the brake or the active law at the control period",
-     [](const S& s) -> std::string {
-       const firmware::ConfigCheck check = Controller::check(s.controller);
-       return check.ok ? "" : "refused by the controller's start-up check: " + describe(check);
-     }},
+     "the controller's start-up check (firmware/app/ship_roll_damper_controller.hpp): the sampled loop's "
+     "limits for the brake or the active law at the control period",
+     controller_refusal<Controller, S>},
 };
 
 // What the controller takes from the plant, and the rate of its loop.

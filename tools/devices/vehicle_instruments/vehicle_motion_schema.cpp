@@ -57,29 +57,19 @@ constexpr schema::Field<Segment> kSegmentFields[] = {
 
 constexpr const char* kNote =
     "The instruments on a vehicle (`gyro_vertical`, `gyrocompass`, `inertial_platform`, `gyro_pendulum`) "
-    "ride on "
-    "a vehicle moving over the rotating spherical Earth: sim/motion/earth_vehicle.hpp (great-circle legs, "
-    "coordinated turns, along-track accelerations; exact closed forms), planned by `[earth]`, `[vehicle]` "
-    "and "
-    "the consecutive sections `[segment1]`, `[segment2]`, … (at most 32; after the last one the vehicle "
-    "cruises "
-    "on a great circle at its final speed). A segment turns or accelerates, not both. Segment durations must "
-    "be "
-    "whole ticks: the rates and accelerations jump at a segment's end (a corner), and the plants integrate "
-    "each "
-    "tick with the generator's left limit at its end and start the next tick from the right limit "
-    "(sim/motion/corner_clock.hpp; an O(h·Δa) error otherwise). Between the two samples of a tick the "
-    "frame's "
-    "motion is linear (sim/plants/vehicle_frame_feed.hpp).\n\n"
-    "The pendulous instruments (gyro vertical, gyrocompass) see the specific force without the horizontal "
-    "part "
-    "of the Earth's centrifugal acceleration (sim/plants/instrument_frames.hpp): on the real, ellipsoidal "
-    "Earth "
-    "the plumb line is the level surface's normal, the vertical the book refers them to; motion-induced "
-    "terms "
+    "ride on a vehicle moving over the rotating spherical Earth: sim/motion/earth_vehicle.hpp (great-circle "
+    "legs, coordinated turns, along-track accelerations; exact closed forms), planned by `[earth]`, "
+    "`[vehicle]` and the consecutive sections `[segment1]`, `[segment2]`, … (at most 32; after the last one "
+    "the vehicle cruises on a great circle at its final speed). A segment turns or accelerates, not both. "
+    "Segment durations must be whole ticks: the rates and accelerations jump at a segment's end (a corner), "
+    "and the plants integrate each tick with the generator's left limit at its end and start the next tick "
+    "from the right limit (sim/motion/corner_clock.hpp; an O(h·Δa) error otherwise). Between the two samples "
+    "of a tick the frame's motion is linear (sim/plants/vehicle_frame_feed.hpp).\n\nThe pendulous "
+    "instruments (gyro vertical, gyrocompass) see the specific force without the horizontal part of the "
+    "Earth's centrifugal acceleration (sim/plants/instrument_frames.hpp): on the real, ellipsoidal Earth the "
+    "plumb line is the level surface's normal, the vertical the book refers them to; motion-induced terms "
     "(accelerations, Coriolis) stay. The inertial platform and the gyro pendulum keep the raw specific force "
-    "and "
-    "refer to the geocentric vertical.";
+    "and refer to the geocentric vertical.";
 
 }  // namespace
 
