@@ -13,7 +13,7 @@
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
-#include "tools/devices/servo_gyro/servo_gyro_drive_sums.hpp"
+#include "sim/analysis/servo_drive_sums.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/servo_gyro/servo_gyro_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
@@ -84,7 +84,7 @@ class ServoGyroRun {
   }
 
   nlohmann::json figures() const {
-    const DriveSums& d = done_;
+    const analysis::DriveSums& d = done_;
     nlohmann::json f{{"drive_rate_reference_rad_s", s_.controller.reference},
                      {"revolutions", revolutions_},
                      {"statistics_from_s", s_.settle_s},
@@ -150,7 +150,7 @@ class ServoGyroRun {
   bool started_{false};
   double beta_start_{0.0};
   std::int64_t revolutions_{0};
-  DriveSums run_{}, done_{};  // the sums so far, and at the last completed revolution
+  analysis::DriveSums run_{}, done_{};  // the sums so far, and at the last completed revolution
   std::int64_t ticks_{0};
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
 };

@@ -2,14 +2,14 @@
 // angle β — the motor's phase, not the clock's. With α = α_A cos(β − φ), M1^KR = −H cosβ β' and (14.43)
 // M2^K = ½ H Ω α_A (sin(2β − φ) − sin φ), the Fourier sums over whole revolutions give α_A, φ, the amplitude
 // of M1 and the mean and 2β-harmonic of M2 exactly for sinusoids sampled uniformly in β (to O(rate ripple)
-// otherwise), while the sensor noise in M2 averages out. Allocation-free; read by servo_gyro_run.cpp.
+// otherwise), while the sensor noise in M2 averages out. Allocation-free; read by tools/devices/servo_gyro/servo_gyro_run.cpp.
 // Test: none of its own yet; the figures of sim/scenes/servo-gyro.toml run in tests/determinism.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 
-namespace gyrostab::tools {
+namespace gyrostab::analysis {
 
 struct DriveSums {
   std::int64_t n{0};
@@ -43,4 +43,4 @@ struct DriveSums {
   }
 };
 
-}  // namespace gyrostab::tools
+}  // namespace gyrostab::analysis
