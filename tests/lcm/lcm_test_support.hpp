@@ -27,6 +27,8 @@
 #include <thread>
 #include <vector>
 
+#include "tests/support/json_file.hpp"
+
 #ifndef GYROSTAB_BIN
 #define GYROSTAB_BIN ""
 #endif
@@ -119,11 +121,6 @@ inline std::string read_file(const std::string& path) {
   return s.str();
 }
 
-inline nlohmann::json read_json(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) return nlohmann::json();
-  return nlohmann::json::parse(f, nullptr, false);
-}
 
 // A fresh directory under /tmp, removed when the object goes (kept with GYROSTAB_KEEP_TEST_DIRS=1).
 class TempDir {
