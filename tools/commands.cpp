@@ -1,5 +1,6 @@
 #include "tools/commands.hpp"
 
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "tools/devices/registry.hpp"
+#include "tools/run/output_dir.hpp"
 #include "tools/run/recorder.hpp"
 #include "tools/run/run_modes.hpp"
 
@@ -24,6 +26,23 @@ const DeviceDescriptor* find_device(SceneReader& reader) {
   return nullptr;
 }
 
+std::size_t recorded_columns(const DeviceScene& scene) {
+  return scene.loop().signals.empty() ? scene.columns().size() : scene.loop().signals.size();
+}
+
+// --ticks against the scene: the simulated time of the last tick must fit the integer clock, and the
+// recording must fit the recorder's ceiling. "" or the problem.
+std::string ticks_problem(const DeviceScene& scene, std::int64_t ticks) {
+  const LoopConfig& loop = scene.loop();
+  if (ticks < 0) return "";
+  if (ticks > INT64_MAX / loop.tick_ns) {
+    return "--ticks " + std::to_string(ticks) + ": the simulated time would overflow the integer clock (at most " +
+           std::to_string(INT64_MAX / loop.tick_ns) + " ticks of " + std::to_string(loop.tick_ns) + " ns)";
+  }
+  const std::string why = recording_problem(recording_size(ticks, loop.record_every, recorded_columns(scene)));
+  return why.empty() ? "" : "--ticks " + std::to_string(ticks) + ": " + why;
+}
+
 void print_problems(const SceneReader& reader) {
   for (const auto& e : reader.errors()) std::fprintf(stderr, "%s\n", e.c_str());
 }
@@ -37,6 +56,12 @@ std::unique_ptr<DeviceScene> read_scene(SceneReader& reader) {
   const std::string bad = Recorder::check_signals(scene->columns(), scene->loop().signals);
   if (!bad.empty()) {
     reader.fail("output", "signals", bad);
+    return nullptr;
+  }
+  const LoopConfig& loop = scene->loop();
+  if (const std::string why = recording_problem(recording_size(loop.ticks(), loop.record_every, recorded_columns(*scene)));
+      !why.empty()) {
+    reader.fail("scene", "duration_s", why);
     return nullptr;
   }
   return scene;
@@ -71,15 +96,30 @@ int run_scene(const RunRequest& req) {
                  reader.errors().size() == 1 ? "" : "s");
     return 2;
   }
+  const LoopConfig& loop = scene->loop();
+  const std::int64_t ticks = req.ticks >= 0 ? req.ticks : loop.ticks();
+  if (const std::string why = ticks_problem(*scene, req.ticks); !why.empty()) {
+    std::fprintf(stderr, "%s: refused: %s\n", req.scene_path.c_str(), why.c_str());
+    return 2;
+  }
+  if (req.role == Role::kInProcess || req.role == Role::kPlant || (req.role == Role::kResimulate && req.write_outputs)) {
+    if (const std::string w = recording_warning(recording_size(ticks, loop.record_every, recorded_columns(*scene)));
+        !w.empty()) {
+      std::fprintf(stderr, "%s: warning: %s\n", req.scene_path.c_str(), w.c_str());
+    }
+  }
   if (req.check_only) {
     std::printf("%s: ok\n", req.scene_path.c_str());
     return 0;
   }
-  const int rc = run_device_scene(*scene, req);
-  if (rc == 0 && req.write_outputs && req.role != Role::kController) {
-    std::printf("%s: wrote %s/report.json, signals.csv\n", req.scene_path.c_str(), req.out_dir.c_str());
+  // Before anything runs: a run that cannot write its outputs is refused now, not after simulating.
+  if (req.write_outputs && req.role != Role::kReplay) {
+    if (std::string error; !check_output_dir(req.out_dir, error)) {
+      std::fprintf(stderr, "gyrostab: %s\n", error.c_str());
+      return 2;
+    }
   }
-  return rc;
+  return run_device_scene(*scene, req);
 }
 
 int check_scene_text(std::string_view text, const std::string& name, std::vector<std::string>* problems) {

@@ -62,8 +62,9 @@ namespace gyrostab::hil {
 template <>
 class FrameEndpoint<can::CanBusTransport> {
  public:
-  explicit FrameEndpoint(can::CanBusTransport& bus)
+  FrameEndpoint(can::CanBusTransport& bus, const GuardConfig& guard)
       : bus_(bus),
+        guard_(guard),
         sensor_tx_(can::Direction::kSensor, bus.nodes),
         actuator_tx_(can::Direction::kActuator, bus.nodes),
         sensor_rx_(can::Direction::kSensor, bus.nodes),
@@ -94,6 +95,16 @@ class FrameEndpoint<can::CanBusTransport> {
   RxStatus receive(std::int64_t deadline_ns, msg::ActuatorFrame& out, std::int64_t* sim_time_us = nullptr) {
     return receive_set(actuator_rx_, deadline_ns, out, sim_time_us);
   }
+
+  // Fault injection (--loss), as for the other transports (frame_endpoint.hpp): a whole set per draw.
+  void inject_loss(double p, std::uint64_t seed, std::uint64_t stream) {
+    loss_ = p;
+    loss_rng_ = random::SeededRng(seed, stream);
+  }
+
+  // Binds to the peer of the set last returned by receive() (the handshake).
+  void bind_to_last() { guard_.bind(last_rx_); }
+  const LinkGuard& guard() const { return guard_; }
 
   LinkCounters& counters() { return counters_; }
   const LinkCounters& counters() const { return counters_; }
@@ -175,6 +186,10 @@ class FrameEndpoint<can::CanBusTransport> {
       return false;
     }
     last_send_ns_ = monotonic_ns();
+    if (loss_ > 0.0 && loss_rng_.uniform() < loss_) {
+      ++counters_.lost_by_fault;  // the whole set gone on the way (fault injection)
+      return true;
+    }
     const std::int64_t deadline = last_send_ns_ + bus_.send_timeout_ns;
     bool ok = true;
     for (std::size_t i = 0; i < n; ++i) {
@@ -213,12 +228,17 @@ class FrameEndpoint<can::CanBusTransport> {
       if (rx.accept(f) != can::FrameError::kNone || !rx.ready()) continue;
       rx.take(out);
       ++counters_.received;
+      last_rx_ = LinkEnvelope{1, guard_.session() != 0 ? guard_.session() : 1, 0, 0};
       if (sim_time_us != nullptr) *sim_time_us = static_cast<std::int64_t>(out.tick) * bus_.tick_ns / 1000;
       return RxStatus::kMessage;
     }
   }
 
   can::CanBusTransport& bus_;
+  LinkGuard guard_;
+  LinkEnvelope last_rx_{};
+  double loss_{0.0};
+  random::SeededRng loss_rng_{0};
   can::FrameEncoder sensor_tx_, actuator_tx_;
   can::SetAssembler sensor_rx_, actuator_rx_;
   std::array<can::CanFrame, can::kMaxMessagesPerDirection> tx_{};

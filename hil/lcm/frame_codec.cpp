@@ -13,9 +13,9 @@ namespace {
 // The generated classes hold exactly the wire fields (no pointers, no strings): a field added to a .lcm file
 // without updating kSensorEncodedSize / kActuatorEncodedSize fails here; the unit test compares the constants
 // with the generated getEncodedSize().
-static_assert(sizeof(gyrostab_msg::sensor_frame_t) == 152,
+static_assert(sizeof(gyrostab_msg::sensor_frame_t) == 184,
               "sensor_frame_t changed: update kSensorEncodedSize");
-static_assert(sizeof(gyrostab_msg::actuator_frame_t) == 80,
+static_assert(sizeof(gyrostab_msg::actuator_frame_t) == 112,
               "actuator_frame_t changed: update kActuatorEncodedSize");
 
 template <std::size_t N, class T>
@@ -78,17 +78,34 @@ void from_wire(const gyrostab_msg::actuator_frame_t& w, msg::ActuatorFrame& f) {
   f.precession_brake = w.precession_brake;
 }
 
+template <class Wire>
+void envelope_to_wire(const LinkEnvelope& e, Wire& w) {
+  w.sender = static_cast<std::int64_t>(e.sender);
+  w.session = static_cast<std::int64_t>(e.session);
+  w.freshness = static_cast<std::int64_t>(e.freshness);
+  w.mac = static_cast<std::int64_t>(e.mac);
+}
+
+template <class Wire>
+LinkEnvelope envelope_from_wire(const Wire& w) {
+  return {static_cast<std::uint64_t>(w.sender), static_cast<std::uint64_t>(w.session),
+          static_cast<std::uint64_t>(w.freshness), static_cast<std::uint64_t>(w.mac)};
+}
+
 template <class Wire, class Frame>
-int encode_as(const Frame& f, std::int64_t sim_time_us, std::uint8_t* buf, int capacity, int expected) {
+int encode_as(const Frame& f, std::int64_t sim_time_us, std::uint8_t* buf, int capacity, int expected,
+              const LinkEnvelope& envelope) {
   if (buf == nullptr || capacity < expected) return -1;
   Wire w{};
   to_wire(f, sim_time_us, w);
+  envelope_to_wire(envelope, w);
   const int n = w.encode(buf, 0, capacity);
   return n == expected ? n : -1;
 }
 
 template <class Wire, class Frame>
-DecodeError decode_as(const void* data, int size, Frame& out, std::int64_t* sim_time_us, int expected) {
+DecodeError decode_as(const void* data, int size, Frame& out, std::int64_t* sim_time_us, LinkEnvelope* envelope,
+                      int expected) {
   if (data == nullptr || size != expected) return DecodeError::kWrongSize;
   // The fingerprint is the first 8 bytes, big-endian (LCM marshalling).
   const auto* bytes = static_cast<const std::uint8_t*>(data);
@@ -99,17 +116,29 @@ DecodeError decode_as(const void* data, int size, Frame& out, std::int64_t* sim_
   if (w._decodeNoHash(data, 8, size - 8) != size - 8) return DecodeError::kMalformed;
   from_wire(w, out);
   if (sim_time_us != nullptr) *sim_time_us = w.sim_time_us;
+  if (envelope != nullptr) *envelope = envelope_from_wire(w);
   return DecodeError::kOk;
 }
 
 }  // namespace
 
-int encode(const msg::SensorFrame& f, std::int64_t sim_time_us, std::uint8_t* buf, int capacity) {
-  return encode_as<gyrostab_msg::sensor_frame_t>(f, sim_time_us, buf, capacity, kSensorEncodedSize);
+int encode(const msg::SensorFrame& f, std::int64_t sim_time_us, std::uint8_t* buf, int capacity,
+           const LinkEnvelope& envelope) {
+  return encode_as<gyrostab_msg::sensor_frame_t>(f, sim_time_us, buf, capacity, kSensorEncodedSize, envelope);
 }
 
-int encode(const msg::ActuatorFrame& f, std::int64_t sim_time_us, std::uint8_t* buf, int capacity) {
-  return encode_as<gyrostab_msg::actuator_frame_t>(f, sim_time_us, buf, capacity, kActuatorEncodedSize);
+int encode(const msg::ActuatorFrame& f, std::int64_t sim_time_us, std::uint8_t* buf, int capacity,
+           const LinkEnvelope& envelope) {
+  return encode_as<gyrostab_msg::actuator_frame_t>(f, sim_time_us, buf, capacity, kActuatorEncodedSize, envelope);
+}
+
+void write_envelope(std::uint8_t* buf, int size, const LinkEnvelope& e) {
+  // The envelope is the last four int64 fields, big-endian (LCM marshalling).
+  const std::uint64_t v[4] = {e.sender, e.session, e.freshness, e.mac};
+  std::uint8_t* p = buf + size - kEnvelopeEncodedSize;
+  for (const std::uint64_t x : v) {
+    for (int i = 7; i >= 0; --i) *p++ = static_cast<std::uint8_t>(x >> (8 * i));
+  }
 }
 
 const char* describe(DecodeError e) {
@@ -126,12 +155,14 @@ const char* describe(DecodeError e) {
   return "unknown decode error";
 }
 
-DecodeError decode(const void* data, int size, msg::SensorFrame& out, std::int64_t* sim_time_us) {
-  return decode_as<gyrostab_msg::sensor_frame_t>(data, size, out, sim_time_us, kSensorEncodedSize);
+DecodeError decode(const void* data, int size, msg::SensorFrame& out, std::int64_t* sim_time_us,
+                   LinkEnvelope* envelope) {
+  return decode_as<gyrostab_msg::sensor_frame_t>(data, size, out, sim_time_us, envelope, kSensorEncodedSize);
 }
 
-DecodeError decode(const void* data, int size, msg::ActuatorFrame& out, std::int64_t* sim_time_us) {
-  return decode_as<gyrostab_msg::actuator_frame_t>(data, size, out, sim_time_us, kActuatorEncodedSize);
+DecodeError decode(const void* data, int size, msg::ActuatorFrame& out, std::int64_t* sim_time_us,
+                   LinkEnvelope* envelope) {
+  return decode_as<gyrostab_msg::actuator_frame_t>(data, size, out, sim_time_us, envelope, kActuatorEncodedSize);
 }
 
 }  // namespace gyrostab::hil

@@ -15,17 +15,29 @@
 
 #include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/sensor_frame.hpp"
+#include "hil/link/link_guard.hpp"
 
 namespace gyrostab::hil {
 
 // Encoded sizes in bytes, including the 8-byte fingerprint (checked against lcm-gen's getEncodedSize()).
-inline constexpr int kSensorEncodedSize = 8 + 3 * 8 + 2 * 4 + 13 * 8 + 2 * 4 + 8;  // 160
-inline constexpr int kActuatorEncodedSize = 8 + 3 * 8 + 2 * 4 + 5 * 8 + 8;         // 88
+inline constexpr int kEnvelopeEncodedSize = 4 * 8;                                     // sender .. mac
+inline constexpr int kSensorEncodedSize = 8 + 3 * 8 + 2 * 4 + 13 * 8 + 2 * 4 + 8 + kEnvelopeEncodedSize;  // 192
+inline constexpr int kActuatorEncodedSize = 8 + 3 * 8 + 2 * 4 + 5 * 8 + 8 + kEnvelopeEncodedSize;         // 120
+// The bytes a frame's MAC covers: everything before `session` (the session and the freshness value enter the
+// authenticator's header, the MAC is what it makes).
+constexpr int mac_covered_bytes(int encoded_size) { return encoded_size - 3 * 8; }
+// The data ids of the two directions (hil/link/link_guard.hpp): what a MAC says a frame is for.
+inline constexpr std::uint32_t kSensorDataId = 0x53454E53;    // "SENS"
+inline constexpr std::uint32_t kActuatorDataId = 0x41435455;  // "ACTU"
 
-// Encodes `f` (and the simulated time of its tick) into buf[0, capacity). Returns the bytes written
-// (kSensorEncodedSize / kActuatorEncodedSize) or -1 if capacity is too small (nothing useful written).
-int encode(const msg::SensorFrame& f, std::int64_t sim_time_us, std::uint8_t* buf, int capacity);
-int encode(const msg::ActuatorFrame& f, std::int64_t sim_time_us, std::uint8_t* buf, int capacity);
+// Encodes `f` (and the simulated time of its tick, and the link's envelope) into buf[0, capacity). Returns the
+// bytes written (kSensorEncodedSize / kActuatorEncodedSize) or -1 if capacity is too small.
+int encode(const msg::SensorFrame& f, std::int64_t sim_time_us, std::uint8_t* buf, int capacity,
+           const LinkEnvelope& envelope = {});
+int encode(const msg::ActuatorFrame& f, std::int64_t sim_time_us, std::uint8_t* buf, int capacity,
+           const LinkEnvelope& envelope = {});
+// Overwrites the envelope of an encoded frame (the endpoint secures a frame after encoding it).
+void write_envelope(std::uint8_t* buf, int size, const LinkEnvelope& envelope);
 
 enum class DecodeError {
   kOk,
@@ -35,8 +47,10 @@ enum class DecodeError {
 };
 const char* describe(DecodeError e);
 
-// Decodes exactly one message of `size` bytes. On anything but kOk, `out` and *sim_time_us are unchanged.
-DecodeError decode(const void* data, int size, msg::SensorFrame& out, std::int64_t* sim_time_us = nullptr);
-DecodeError decode(const void* data, int size, msg::ActuatorFrame& out, std::int64_t* sim_time_us = nullptr);
+// Decodes exactly one message of `size` bytes. On anything but kOk, the outputs are unchanged.
+DecodeError decode(const void* data, int size, msg::SensorFrame& out, std::int64_t* sim_time_us = nullptr,
+                   LinkEnvelope* envelope = nullptr);
+DecodeError decode(const void* data, int size, msg::ActuatorFrame& out, std::int64_t* sim_time_us = nullptr,
+                   LinkEnvelope* envelope = nullptr);
 
 }  // namespace gyrostab::hil

@@ -48,7 +48,13 @@ inline ActuatorVerdict check_actuator_values(const msg::ActuatorFrame& f, const 
   return ActuatorVerdict::kOk;
 }
 
-enum class OrderVerdict { kExpected, kRepeated, kStale, kAhead };
+enum class OrderVerdict { kExpected, kRepeated, kStale, kAhead, kJump };
+
+// Both ends send one frame per tick and count it in the sequence (the plant's sequence is the tick, the
+// controller's advances once per step), so between two accepted frames the sequence advances by at most the
+// ticks between them. A frame whose sequence jumps further is refused (kJump): accepted, it would make every
+// genuine frame after it look stale and lock the genuine peer out for good.
+inline constexpr std::uint32_t kSequenceSlack = 2;
 
 // Tracks the last accepted (tick, sequence) of one stream of frames and classifies the next one against the
 // tick the receiver expects. Shared by both directions (a SensorFrame and an ActuatorFrame carry the same
@@ -59,6 +65,10 @@ class FrameOrder {
     if (have_last_ && tick == last_tick_ && sequence == last_sequence_) return OrderVerdict::kRepeated;
     if (tick < expected_tick) return OrderVerdict::kStale;
     if (!sequence_advances(sequence)) return OrderVerdict::kStale;
+    if (have_last_ && tick >= last_tick_ &&
+        static_cast<std::uint64_t>(sequence - last_sequence_) > (tick - last_tick_) + kSequenceSlack) {
+      return OrderVerdict::kJump;
+    }
     if (tick > expected_tick) return OrderVerdict::kAhead;
     return OrderVerdict::kExpected;
   }
@@ -93,6 +103,9 @@ inline void count_order_rejection(OrderVerdict v, LinkCounters& c) {
       break;
     case OrderVerdict::kAhead:
       ++c.rejected_ahead;
+      break;
+    case OrderVerdict::kJump:
+      ++c.rejected_jump;
       break;
   }
 }

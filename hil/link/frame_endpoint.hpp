@@ -1,26 +1,42 @@
 // One end of a plant ⇄ controller link over any byte transport (frame_transport.hpp): encodes the frames it
-// sends with the LCM codec (hil/lcm/frame_codec.hpp) into a buffer allocated with the endpoint, decodes what
+// sends with the LCM codec (hil/lcm/frame_codec.hpp) into a buffer allocated with the endpoint, secures each
+// with the link's envelope (hil/link/link_guard.hpp: sender, session, freshness, MAC with a key), decodes what
 // it receives into the caller's frame, and counts (link_counters.hpp). Codec-level rejections (size,
-// fingerprint, malformed body) are counted here and never reach the caller; content and order checks are the
-// caller's (they depend on the direction: hil/link/actuator_frame_check.hpp, the firmware fault monitor).
-// No heap after construction.
+// fingerprint, malformed body) and the guard's (recorded, foreign, bad MAC, replayed) are counted here and
+// never reach the caller; content and order checks are the caller's (they depend on the direction:
+// hil/link/actuator_frame_check.hpp, the firmware fault monitor). The caller binds the endpoint to its peer at
+// the handshake (bind_to_last()). No heap after construction.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <span>
 
 #include "hil/lcm/frame_codec.hpp"
 #include "hil/link/frame_transport.hpp"
+#include "hil/link/link_guard.hpp"
 #include "hil/link/link_counters.hpp"
+#include "sim/random/seeded_rng.hpp"
 
 namespace gyrostab::hil {
+
+// The guard of each end (data ids: hil/lcm/frame_codec.hpp). The plant's session is its own id; the controller
+// has its own id and the session it was given, or 0 to bind at the handshake.
+inline GuardConfig plant_guard(std::uint64_t session, const std::optional<firmware::link::Key128>& key) {
+  return GuardConfig{session, session, key, kSensorDataId, kActuatorDataId};
+}
+inline GuardConfig controller_guard(std::uint64_t own_id, std::uint64_t session,
+                                    const std::optional<firmware::link::Key128>& key) {
+  return GuardConfig{own_id, session, key, kActuatorDataId, kSensorDataId};
+}
 
 template <class Transport>
 class FrameEndpoint {
  public:
-  explicit FrameEndpoint(Transport& transport) : transport_(transport) {}
+  FrameEndpoint(Transport& transport, const GuardConfig& guard) : transport_(transport), guard_(guard) {}
 
-  // Encodes and publishes `f`; the bytes are kept for resend(). false: encoding or the transport failed.
+  // Encodes, secures and publishes `f`; the frame's bytes are kept for resend(). false: encoding or the
+  // transport failed.
   template <class Frame>
   bool send(const Frame& f, std::int64_t sim_time_us) {
     last_size_ = encode(f, sim_time_us, tx_.data(), static_cast<int>(tx_.size()));
@@ -28,14 +44,15 @@ class FrameEndpoint {
       ++counters_.send_errors;
       return false;
     }
-    return publish_last();
+    return secure_and_publish();
   }
 
-  // Publishes the last sent frame again, byte for byte (lockstep recovery of a lost datagram).
+  // Publishes the last sent frame again with the next freshness value (lockstep recovery of a lost datagram:
+  // a byte-identical copy would be refused as a replay under a key).
   bool resend() {
     if (last_size_ <= 0) return false;
     ++counters_.resent;
-    return publish_last();
+    return secure_and_publish();
   }
 
   // Waits until CLOCK_MONOTONIC deadline_ns for a message that decodes as `Frame`. kMessage: `out` holds it
@@ -50,8 +67,14 @@ class FrameEndpoint {
         return s;
       }
       ++counters_.received;
-      switch (decode(m.data, m.data == nullptr ? -1 : m.size, out, sim_time_us)) {
+      LinkEnvelope e;
+      switch (decode(m.data, m.data == nullptr ? -1 : m.size, out, sim_time_us, &e)) {
         case DecodeError::kOk:
+          if (guard_.check(e, std::span(m.data, static_cast<std::size_t>(mac_covered_bytes(m.size)))) !=
+              GuardVerdict::kOk) {
+            break;  // counted by the guard
+          }
+          last_rx_ = e;
           return RxStatus::kMessage;
         case DecodeError::kWrongSize:
           ++counters_.rejected_size;
@@ -66,11 +89,33 @@ class FrameEndpoint {
     }
   }
 
+  // Binds to the peer of the frame last returned by receive() (the handshake frame).
+  void bind_to_last() { guard_.bind(last_rx_); }
+  const LinkGuard& guard() const { return guard_; }
+
   LinkCounters& counters() { return counters_; }
   const LinkCounters& counters() const { return counters_; }
 
+  // Fault injection (--loss): every frame this end sends, resends included, is lost on the way with
+  // probability p, drawn from its own seeded stream (a rerun loses the same frames in the same order).
+  void inject_loss(double p, std::uint64_t seed, std::uint64_t stream) {
+    loss_ = p;
+    loss_rng_ = random::SeededRng(seed, stream);
+  }
+
  private:
+  bool secure_and_publish() {
+    write_envelope(tx_.data(), last_size_, guard_.header());
+    const LinkEnvelope e = guard_.protect(std::span<const std::uint8_t>(
+        tx_.data(), static_cast<std::size_t>(mac_covered_bytes(last_size_))));
+    write_envelope(tx_.data(), last_size_, e);
+    return publish_last();
+  }
   bool publish_last() {
+    if (loss_ > 0.0 && loss_rng_.uniform() < loss_) {
+      ++counters_.lost_by_fault;
+      return true;  // gone on the way: the sender cannot tell
+    }
     if (!transport_.publish(tx_.data(), last_size_)) {
       ++counters_.send_errors;
       return false;
@@ -82,6 +127,10 @@ class FrameEndpoint {
   static constexpr int kTxBytes =
       kSensorEncodedSize > kActuatorEncodedSize ? kSensorEncodedSize : kActuatorEncodedSize;
   Transport& transport_;
+  LinkGuard guard_;
+  LinkEnvelope last_rx_{};
+  double loss_{0.0};
+  random::SeededRng loss_rng_{0};
   std::array<std::uint8_t, kTxBytes> tx_{};
   int last_size_{0};
   LinkCounters counters_{};

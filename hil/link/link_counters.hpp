@@ -14,6 +14,7 @@ struct LinkCounters {
   std::uint64_t send_errors{0};         // publishes the transport refused [-]
   std::uint64_t resent{0};              // lockstep: frames published again because no answer came [-]
   std::uint64_t dropped_by_fault{0};    // frames withheld by --drop-frames (fault injection) [-]
+  std::uint64_t lost_by_fault{0};       // frames lost on the way by --loss (fault injection) [-]
   std::uint64_t corrupted_by_fault{0};  // frames sent with a NaN by --corrupt-frames (fault injection) [-]
   // Receiving side: every message on the receive channel is `received`, then exactly one of accepted or a
   // rejection reason (checked in this order).
@@ -27,6 +28,8 @@ struct LinkCounters {
   std::uint64_t rejected_stale{0};         // tick or sequence older than expected [-]
   std::uint64_t rejected_repeated{0};      // exact repeat of the last accepted frame (tick and sequence) [-]
   std::uint64_t rejected_ahead{0};         // tick further ahead than the link allows [-]
+  std::uint64_t rejected_jump{0};          // sequence jumped further than the ticks since the last frame [-]
+  std::uint64_t rejected_before_handshake{0};  // controller: a frame of a session before its handshake [-]
   // Per tick.
   std::uint64_t missed_frames{0};  // ticks that ended without an accepted frame [-]
   std::uint64_t timeouts{0};       // waits that reached their deadline [-]
@@ -34,7 +37,8 @@ struct LinkCounters {
 
   std::uint64_t rejected() const {
     return rejected_size + rejected_fingerprint + rejected_malformed + rejected_non_finite +
-           rejected_out_of_range + rejected_stale + rejected_repeated + rejected_ahead;
+           rejected_out_of_range + rejected_stale + rejected_repeated + rejected_ahead + rejected_jump +
+           rejected_before_handshake;
   }
 };
 

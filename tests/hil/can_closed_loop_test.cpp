@@ -142,15 +142,18 @@ TEST(CanClosedLoop, ASceneOverTheBusLoadLimitIsRefusedBeforeAnythingIsSent) {
 
 // Real time over CAN (as over LCM, docs/transport.md): both sides paced by CLOCK_MONOTONIC deadlines; the
 // report carries period, jitter, lateness and compute time; actuator frames withheld for 10 ticks give zero
-// torque for those ticks (the drive watchdog), and the run completes. The 20 ms Schuler monitor scene keeps
+// torque for those ticks (the drive watchdog), and the run ends with the verdict its safe-state share earns. The 20 ms Schuler monitor scene keeps
 // the emulated VM (TCG, ~6 700 FD frames/s) inside its deadlines; timing itself is never asserted.
 TEST(CanClosedLoop, RealTimeRunReportsItsTimingAndMissingCommandsGiveZeroTorque) {
   TempDir d;
   const Exit e = run({gyrostab_bin(), "run", scene("schuler-gyro-pendulum.toml"), "--transport", "can", "--can-if",
                       can_if(), "--real-time", "--ticks", "150", "--drop-actuator", "60:10", "--no-progress",
                       "--out", d / "rt"});
-  ASSERT_EQ(e.code, 0);
   const nlohmann::json r = read_json(d / "rt/report.json");
+  // The verdict follows the share of safe-state ticks (docs/transport.md): completed up to 5 %, degraded
+  // (exit 8) beyond; an emulated VM may miss real-time frames of its own.
+  const double share = r["controller_process"]["link"]["safe_state"]["share"].get<double>();
+  ASSERT_EQ(e.code, share > 0.05 ? 8 : 0) << "safe-state share " << share;
   EXPECT_EQ(r["processes"]["transport"], "can");
   EXPECT_EQ(r["timing"]["mode"], "real_time");
   EXPECT_EQ(r["controller_process"]["timing"]["mode"], "real_time");

@@ -26,11 +26,15 @@ struct Forger {
   std::int64_t last_sensor_tick{-1};  // the latest genuine sensor frame
   std::int64_t last_copied_actuator{-1};
   std::uint64_t forged{0};
+  // The envelope of the genuine frame being answered: a process that reads the bus copies the session and
+  // the sender ids (without a link key nothing more is needed), so its frames reach the order and value
+  // checks, which are what this test is about.
+  hil::LinkEnvelope envelope{};
 
   template <class Frame>
   void publish(const std::string& channel, const Frame& f, int size_delta = 0, bool bad_fingerprint = false) {
     std::uint8_t buf[512] = {};
-    const int n = hil::encode(f, 0, buf, static_cast<int>(sizeof buf));
+    const int n = hil::encode(f, 0, buf, static_cast<int>(sizeof buf), envelope);
     if (bad_fingerprint) buf[3] ^= 0x40;
     lcm_publish(lcm, channel.c_str(), buf, static_cast<unsigned>(n + size_delta));
     ++forged;
@@ -105,11 +109,13 @@ void on_message(const lcm_recv_buf_t* rbuf, const char* channel, void* user) {
   auto* f = static_cast<Forger*>(user);
   if (kSensorChannel == channel) {
     msg::SensorFrame s{};
-    if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), s) == hil::DecodeError::kOk)
+    if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), s, nullptr, &f->envelope) ==
+        hil::DecodeError::kOk)
       f->on_sensor(s);
   } else {
     msg::ActuatorFrame a{};
-    if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), a) == hil::DecodeError::kOk)
+    if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), a, nullptr, &f->envelope) ==
+        hil::DecodeError::kOk)
       f->on_actuator(a);
   }
 }

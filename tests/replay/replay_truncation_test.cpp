@@ -8,6 +8,7 @@
 
 #include "tests/support/bus_log_fixtures.hpp"
 #include "tests/support/shipped_scenes.hpp"
+#include "hil/lcm/frame_codec.hpp"
 #include "tools/log/bus_log_reader.hpp"
 #include "tools/run/replay_session.hpp"
 
@@ -39,8 +40,9 @@ Layout layout_of(const std::string& log) {
     l.starts.push_back(t.actuator_offset);
   }
   l.size = r.file_size();
-  // The end event follows the last actuator event (same size as every actuator event: 28 + 17 + 88 bytes).
-  l.starts.push_back(l.starts.back() + 28 + 17 + 88);
+  // The end event follows the last actuator event (the size of every actuator event: the event header, the
+  // channel name and the encoded frame).
+  l.starts.push_back(l.starts.back() + 28 + 17 + hil::kActuatorEncodedSize);
   return l;
 }
 

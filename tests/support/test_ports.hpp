@@ -20,6 +20,7 @@ class LawPort final : public tools::ControllerPort {
   bool in_safe_state() const override { return false; }
   void acknowledge() override {}
   firmware::MonitorState monitor_state() const override { return firmware::MonitorState::kNormal; }
+  std::uint32_t monitor_status() const override { return 0; }
   nlohmann::json report() const override { return nlohmann::json::object(); }
   Law& law() { return law_; }
 

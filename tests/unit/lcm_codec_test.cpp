@@ -73,8 +73,8 @@ bool same_bytes(const T& a, const T& b) {
 TEST(LcmCodec, EncodedSizesMatchTheGeneratedTypesAndFitOneDatagram) {
   EXPECT_EQ(kSensorEncodedSize, gyrostab_msg::sensor_frame_t{}.getEncodedSize());
   EXPECT_EQ(kActuatorEncodedSize, gyrostab_msg::actuator_frame_t{}.getEncodedSize());
-  EXPECT_EQ(kSensorEncodedSize, 160);
-  EXPECT_EQ(kActuatorEncodedSize, 88);
+  EXPECT_EQ(kSensorEncodedSize, 192);
+  EXPECT_EQ(kActuatorEncodedSize, 120);
   // LCM fragments messages whose channel name + payload exceed one ~1400-byte datagram.
   EXPECT_LT(kSensorEncodedSize, 1400);
   EXPECT_LT(kActuatorEncodedSize, 1400);
@@ -110,8 +110,13 @@ TEST(LcmCodec, WireBytesAreTheGeneratedEncoding) {
   // The codec must produce what lcm-gen's own encode() produces (lcm-spy, lcm-logplayer, other languages).
   const msg::ActuatorFrame a = filled_actuator();
   std::array<std::uint8_t, kActuatorEncodedSize> ours{};
-  ASSERT_EQ(encode(a, 5, ours.data(), kActuatorEncodedSize), kActuatorEncodedSize);
+  const LinkEnvelope env{0x11223344, 0x55667788, 0x8000'0000'0000'0001ull, 0xFEDC'BA98'7654'3210ull};
+  ASSERT_EQ(encode(a, 5, ours.data(), kActuatorEncodedSize, env), kActuatorEncodedSize);
   gyrostab_msg::actuator_frame_t w{};
+  w.sender = static_cast<std::int64_t>(env.sender);
+  w.session = static_cast<std::int64_t>(env.session);
+  w.freshness = static_cast<std::int64_t>(env.freshness);
+  w.mac = static_cast<std::int64_t>(env.mac);
   w.tick = static_cast<std::int64_t>(a.tick);
   w.time_ns = a.time_ns;
   w.sensor_tick = static_cast<std::int64_t>(a.sensor_tick);
@@ -124,6 +129,18 @@ TEST(LcmCodec, WireBytesAreTheGeneratedEncoding) {
   std::array<std::uint8_t, kActuatorEncodedSize> theirs{};
   ASSERT_EQ(w.encode(theirs.data(), 0, kActuatorEncodedSize), kActuatorEncodedSize);
   EXPECT_EQ(ours, theirs);
+  // The endpoint writes the envelope into an encoded frame: the same bytes as encoding it.
+  std::array<std::uint8_t, kActuatorEncodedSize> later{};
+  ASSERT_EQ(encode(a, 5, later.data(), kActuatorEncodedSize), kActuatorEncodedSize);
+  write_envelope(later.data(), kActuatorEncodedSize, env);
+  EXPECT_EQ(later, theirs);
+  LinkEnvelope back{};
+  msg::ActuatorFrame decoded{};
+  ASSERT_EQ(decode(later.data(), kActuatorEncodedSize, decoded, nullptr, &back), DecodeError::kOk);
+  EXPECT_EQ(back.sender, env.sender);
+  EXPECT_EQ(back.session, env.session);
+  EXPECT_EQ(back.freshness, env.freshness);
+  EXPECT_EQ(back.mac, env.mac);
   // Big-endian fingerprint first.
   std::uint64_t fp = 0;
   for (int i = 0; i < 8; ++i) fp = (fp << 8) | ours[static_cast<std::size_t>(i)];

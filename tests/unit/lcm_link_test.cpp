@@ -23,6 +23,8 @@
 namespace gyrostab {
 namespace {
 
+constexpr std::uint64_t kSession = 0x2468ace0;
+constexpr std::uint64_t kControllerId = 0x13579bdf;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -97,14 +99,15 @@ struct Ends {
   std::unique_ptr<hil::MemoryBus> bus = std::make_unique<hil::MemoryBus>();
   hil::MemoryTransport plant_side{bus->to_controller, bus->to_plant};
   hil::MemoryTransport controller_side{bus->to_plant, bus->to_controller};
-  hil::FrameEndpoint<hil::MemoryTransport> plant{plant_side};
-  hil::FrameEndpoint<hil::MemoryTransport> controller{controller_side};
+  hil::FrameEndpoint<hil::MemoryTransport> plant{plant_side, hil::plant_guard(kSession, std::nullopt)};
+  hil::FrameEndpoint<hil::MemoryTransport> controller{controller_side,
+                                                      hil::controller_guard(kControllerId, kSession, std::nullopt)};
 };
 
 TEST(FrameEndpoint, CountsCodecRejectionsAndPassesGoodFrames) {
   Ends e;
   std::uint8_t buf[256];
-  const int n = hil::encode(command(5), 0, buf, sizeof buf);
+  const int n = hil::encode(command(5), 0, buf, sizeof buf, hil::LinkEnvelope{kControllerId, kSession, 1, 0});
   e.bus->to_plant.push(buf, n - 1);  // short
   buf[0] ^= 1;
   e.bus->to_plant.push(buf, n);  // fingerprint
@@ -197,7 +200,7 @@ TEST(LcmTransport, MemqDeliversWholeMessagesAndMeasuresAnOversizeOne) {
   std::string error;
   // memq:// is LCM's in-process provider: a message published on the subscribed channel comes back.
   ASSERT_TRUE(t.open("memq://", "GYROSTAB_ACTUATOR_unit", "GYROSTAB_ACTUATOR_unit", 10, error)) << error;
-  hil::FrameEndpoint<hil::LcmTransport> ep(t);
+  hil::FrameEndpoint<hil::LcmTransport> ep(t, hil::plant_guard(kSession, std::nullopt));
   ASSERT_TRUE(ep.send(command(3), 3000));
   msg::ActuatorFrame a{};
   std::int64_t sim_us = 0;

@@ -1,5 +1,7 @@
 #include "tools/accuracy/accuracy_command.hpp"
 
+#include "tools/run/output_dir.hpp"
+
 #include "tools/accuracy/study_entry.hpp"
 
 #include <algorithm>
@@ -46,12 +48,12 @@ int finish_study(const AccuracyRequest& req, StudyResult& result, double setup_w
   if (req.report_out) *req.report_out = study_json(result);
   if (req.write_outputs) {
     std::string error;
-    if (!write_study_outputs(result, req.out_dir, req.plot, error)) {
+    std::vector<std::string> written;
+    if (!write_study_outputs(result, req.out_dir, req.plot, written, error)) {
       std::fprintf(stderr, "gyrostab: %s\n", error.c_str());
       return 3;
     }
-    std::printf("%s: wrote %s/report.json, accuracy.csv%s\n", req.scene_path.c_str(), req.out_dir.c_str(),
-                req.plot ? ", work_precision.png" : "");
+    std::printf("%s: wrote %s in %s\n", req.scene_path.c_str(), list_names(written).c_str(), req.out_dir.c_str());
   }
   if (!result.reference.converged) {
     std::fprintf(stderr, "gyrostab: %s: the reference is not converged: see report.json \"reference\" and docs/accuracy.md\n",

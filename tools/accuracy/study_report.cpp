@@ -1,5 +1,7 @@
 #include "tools/accuracy/study_report.hpp"
 
+#include "tools/run/output_dir.hpp"
+
 #include <algorithm>
 #include <boost/version.hpp>
 #include <cmath>
@@ -299,31 +301,23 @@ nlohmann::json study_json(const StudyResult& s) {
   return j;
 }
 
-bool write_study_outputs(const StudyResult& s, const std::string& out_dir, bool plot, std::string& error) {
-  std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
-  if (ec) {
-    error = "cannot create " + out_dir + ": " + ec.message();
-    return false;
-  }
-  const auto write = [&](const std::string& name, const std::string& text) {
-    std::ofstream f(out_dir + "/" + name);
-    f << text;
-    if (!f) error = "cannot write " + out_dir + "/" + name;
-    return static_cast<bool>(f);
-  };
-  if (!write("accuracy.csv", format_csv(s))) return false;
-  if (!write("report.json", study_json(s).dump(2) + "\n")) return false;
+bool write_study_outputs(const StudyResult& s, const std::string& out_dir, bool plot, std::vector<std::string>& written,
+                         std::string& error) {
+  OutputSet out(out_dir, {"report.json", "accuracy.csv", "work_precision.png"});
+  if (!out.open(error)) return false;
+  if (!out.write("accuracy.csv", format_csv(s), error)) return false;
+  if (!out.write("report.json", study_json(s).dump(2) + "\n", error)) return false;
   if (plot) {
     const char* here = std::getenv("GYROSTAB_WORK_PRECISION_SCRIPT");
     const std::string script = here ? here : GYROSTAB_SOURCE_DIR "/tools/plot/plot_work_precision.py";
-    const std::string cmd = "/usr/bin/python3 '" + script + "' '" + out_dir + "' 2>&1";
-    if (std::system(cmd.c_str()) != 0) {
-      std::fprintf(stderr, "gyrostab: work_precision.png not written (needs /usr/bin/python3 with python3-matplotlib); "
-                           "report.json and accuracy.csv are complete\n");
+    std::string why;
+    if (run_program({"/usr/bin/python3", script, out.staging_dir()}, why) != 0) {
+      std::fprintf(stderr, "gyrostab: work_precision.png not written (needs /usr/bin/python3 with python3-matplotlib%s); "
+                           "report.json and accuracy.csv are complete\n",
+                   why.empty() ? "" : ("; " + why).c_str());
     }
   }
-  return true;
+  return out.commit(written, error);
 }
 
 }  // namespace gyrostab::tools::accuracy

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "tools/accuracy/study_result.hpp"
 
@@ -16,6 +17,7 @@ nlohmann::json study_json(const StudyResult& s);
 
 // Writes accuracy.csv, report.json and work_precision.png into out_dir; false with `error` set if a file
 // could not be written (a missing plotting interpreter is reported on stderr, not an error).
-bool write_study_outputs(const StudyResult& s, const std::string& out_dir, bool plot, std::string& error);
+bool write_study_outputs(const StudyResult& s, const std::string& out_dir, bool plot, std::vector<std::string>& written,
+                         std::string& error);
 
 }  // namespace gyrostab::tools::accuracy

@@ -12,6 +12,14 @@
 namespace gyrostab::tools::buslog {
 
 namespace {
+// A log records every frame with the empty envelope (session 0: never live, so that a log played onto a bus
+// is refused by every live end); anything else in it is a corruption.
+bool recorded_envelope(const hil::LinkEnvelope& e) {
+  return e.sender == 0 && e.session == 0 && e.freshness == 0 && e.mac == 0;
+}
+}  // namespace
+
+namespace {
 
 constexpr std::uint32_t kSyncWord = 0xEDA1DA01u;  // LCM log format: every event starts with it
 constexpr int kHeaderBytes = 28;                  // sync, event number, timestamp, channel and data lengths
@@ -256,10 +264,15 @@ ReadStatus BusLogReader::next(TickRecord& out) {
   r.tick = ticks_;
   r.sensor_offset = s.offset;
   std::int64_t t_us = 0;
-  hil::DecodeError de = hil::decode(s.ev->data, s.ev->datalen, r.sensor, &t_us);
+  hil::LinkEnvelope env;
+  hil::DecodeError de = hil::decode(s.ev->data, s.ev->datalen, r.sensor, &t_us, &env);
   if (de != hil::DecodeError::kOk) {
     return fail(ReadStatus::kCorrupt, s.offset,
                 "the sensor frame of " + tick_name() + " does not decode: " + hil::describe(de));
+  }
+  if (!recorded_envelope(env)) {
+    return fail(ReadStatus::kCorrupt, s.offset,
+                "the sensor frame of " + tick_name() + " carries a live link envelope (a log records it empty)");
   }
   if (t_us != due) {
     return fail(ReadStatus::kCorrupt, s.offset,
@@ -275,10 +288,14 @@ ReadStatus BusLogReader::next(TickRecord& out) {
   }
   if (st != ReadStatus::kOk) return st;
   r.actuator_offset = a.offset;
-  de = hil::decode(a.ev->data, a.ev->datalen, r.actuator, &t_us);
+  de = hil::decode(a.ev->data, a.ev->datalen, r.actuator, &t_us, &env);
   if (de != hil::DecodeError::kOk) {
     return fail(ReadStatus::kCorrupt, a.offset,
                 "the actuator frame of " + tick_name() + " does not decode: " + hil::describe(de));
+  }
+  if (!recorded_envelope(env)) {
+    return fail(ReadStatus::kCorrupt, a.offset,
+                "the actuator frame of " + tick_name() + " carries a live link envelope (a log records it empty)");
   }
   if (t_us != due) {
     return fail(ReadStatus::kCorrupt, a.offset,

@@ -28,6 +28,8 @@ class ControllerPort {
   // next good frame.
   virtual void acknowledge() = 0;
   virtual firmware::MonitorState monitor_state() const = 0;
+  // The fault monitor's status bits (kSafeState, kHoldingLastGood and the causes, msg/fault_bits.hpp).
+  virtual std::uint32_t monitor_status() const = 0;
   // report.json timing.controller: the scheduler's per-task counters and the fault monitor's.
   virtual nlohmann::json report() const = 0;
 };
@@ -47,6 +49,7 @@ class ControllerPortOf final : public ControllerPort {
   }
   void acknowledge() override { c_.acknowledge(); }
   firmware::MonitorState monitor_state() const override { return c_.monitor_state(); }
+  std::uint32_t monitor_status() const override { return c_.monitor_status(); }
   nlohmann::json report() const override { return controller_report(c_); }
 
   Controller& controller() { return c_; }

@@ -37,9 +37,11 @@
 #include "tools/log/stop_signal.hpp"
 #include "tools/run/can_link_setup.hpp"
 #include "tools/run/controller_port.hpp"
+#include "tools/run/link_identity.hpp"
 #include "tools/run/link_report.hpp"
 #include "tools/run/link_settings.hpp"
 #include "tools/run/link_stats.hpp"
+#include "tools/run/output_dir.hpp"
 #include "tools/run/run_modes.hpp"
 #include "tools/run/run_output.hpp"
 
@@ -53,9 +55,18 @@ struct ControllerLinkOutcome {
   std::int64_t silent_ns{0};
   std::int64_t safe_state_tick{-1};    // first tick the fault monitor was in the safe state (any cause)
   std::int64_t missing_ticks{0};       // ticks stepped without a frame
+  std::int64_t safe_ticks{0};          // ticks whose command was the safe one after the first good frame
+  std::int64_t acknowledgements{0};    // link-loss trips acknowledged after kAcknowledgeAfterGoodFrames
   bool transport_error{false};
   int stop_signal{0};
 };
+
+// The safe state was caused by the link alone: frames missing or stale, no bad sensor content.
+bool tripped_by_link_only(std::uint32_t status) {
+  const std::uint32_t causes = status & msg::kFaultCauseMask;
+  const std::uint32_t link = msg::bit(msg::FaultBit::kSensorMissing) | msg::bit(msg::FaultBit::kSensorStale);
+  return causes != 0 && (causes & ~link) == 0;
+}
 
 enum class SensorWait { kAccepted, kSkipped, kMissing, kLost, kStopped, kError };
 
@@ -91,11 +102,18 @@ SensorWait wait_for_sensor(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& o
       if (now >= deadline_ns) return SensorWait::kMissing;
       continue;
     }
+    // Before the handshake only a tick-0 frame can start a session (a plant already running belongs to
+    // another controller).
+    if (!ep.guard().bound() && f.tick != 0) {
+      ++c.rejected_before_handshake;
+      continue;
+    }
     const hil::OrderVerdict o = order.classify(f.tick, f.sequence, tick);
     if (o == hil::OrderVerdict::kExpected) {
       order.accept(f.tick, f.sequence);
       ++c.accepted;
       frame = f;
+      if (!ep.guard().bound()) ep.bind_to_last();
       return SensorWait::kAccepted;
     }
     if (o == hil::OrderVerdict::kAhead && f.tick - tick <= static_cast<std::uint64_t>(kMaxAheadTicks)) {
@@ -139,6 +157,7 @@ void run_controller_loop(ControllerPort& ctl, const LoopConfig& cfg, const RunRe
   std::int64_t last_sent_tick = -1;
   std::int64_t last_republish = 0;
   PlantPhase phase;  // real time: the plant's clock, from the arrivals of its frames
+  std::int64_t good_in_a_row = 0;
   std::int64_t last_heard = hil::monotonic_ns();
   bool heard_any = false;
   for (std::int64_t k = 0; k < ticks; ++k) {
@@ -206,6 +225,17 @@ void run_controller_loop(ControllerPort& ctl, const LoopConfig& cfg, const RunRe
     }
     ctl.step(static_cast<std::uint64_t>(k), got ? &frame : nullptr, out);
     if (link.safe_state_tick < 0 && ctl.in_safe_state()) link.safe_state_tick = k;
+    good_in_a_row = got ? good_in_a_row + 1 : 0;
+    if (ctl.monitor_state() == firmware::MonitorState::kSafe) {
+      ++link.safe_ticks;
+      // The supervisor's rule for a link dropout (docs/transport.md): the firmware latches, the host
+      // acknowledges once the frames have come back; a sensor fault stays latched.
+      if (good_in_a_row >= kAcknowledgeAfterGoodFrames && tripped_by_link_only(ctl.monitor_status())) {
+        ctl.acknowledge();
+        ++link.acknowledgements;
+        good_in_a_row = 0;
+      }
+    }
     const std::int64_t t_stepped = hil::monotonic_ns();
     if (const std::int64_t d = jitter.next(); d > 0) hil::spin_for(d);
     if (t.actuator_drop.covers(k)) {
@@ -247,7 +277,13 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
   std::unique_ptr<ControllerPort> ctl = scene.make_controller();
   if (req.ticks >= 0) run_loop.duration_s = static_cast<double>(req.ticks) * run_loop.tick_s();
   const LinkSettings s = link_settings(run_loop, req.transport);
-  hil::FrameEndpoint<Transport> ep(transport);
+  LinkIdentity guard;
+  if (std::string error; !link_identity(req.transport, /*plant_side=*/false, guard, error)) {
+    std::fprintf(stderr, "gyrostab controller: %s\n", error.c_str());
+    return 2;
+  }
+  hil::FrameEndpoint<Transport> ep(transport, hil::controller_guard(guard.own_id, guard.session, guard.key));
+  if (req.transport.loss > 0) ep.inject_loss(req.transport.loss, loop.seed, 2);
   auto stats = std::make_unique<LinkStats>();
   ControllerLinkOutcome link;
   const auto start = std::chrono::steady_clock::now();
@@ -268,6 +304,7 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
   nlohmann::json l = link_info;
   l["role"] = "controller";
   l["counters"] = counters_json(ep.counters());
+  l["session"] = session_json(ep.guard());
   if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level
   l["missing_ticks"] = link.missing_ticks;
   l["safe_state_tick"] = link.safe_state_tick >= 0 ? nlohmann::json(link.safe_state_tick) : nlohmann::json();
@@ -288,18 +325,33 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
     happened = std::string("stopped by ") + signal_name(link.stop_signal) + " after tick " +
                std::to_string(link.ticks_run - 1);
   }
+  const double safe_share =
+      link.ticks_run > 0 ? static_cast<double>(link.safe_ticks) / static_cast<double>(link.ticks_run) : 0.0;
+  l["safe_state"] = {{"ticks", link.safe_ticks},
+                     {"share", safe_share},
+                     {"max_share", kMaxSafeShare},
+                     {"first_tick", link.safe_state_tick >= 0 ? nlohmann::json(link.safe_state_tick) : nlohmann::json()},
+                     {"ticks_without_frame", link.missing_ticks},
+                     {"link_loss_acknowledged", link.acknowledgements},
+                     {"acknowledge_after_good_frames", kAcknowledgeAfterGoodFrames}};
+  const bool degraded = happened == "completed" && safe_share > kMaxSafeShare;
+  if (degraded) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "degraded: the safe state held %lld of %lld ticks (%.1f %%, more than %.0f %%)",
+                  static_cast<long long>(link.safe_ticks), static_cast<long long>(link.ticks_run),
+                  100.0 * safe_share, 100.0 * kMaxSafeShare);
+    happened = buf;
+  }
   l["what_happened"] = happened;
   if (rt != nullptr) l["real_time_setup"] = {{"sched_fifo", rt->fifo}, {"priority", rt->priority},
                                              {"mlockall", rt->memory_locked}, {"message", rt->message}};
   nlohmann::json report{{"scene", scene_summary(loop, req.scene_path)}, {"timing", timing}, {"link", l}};
   if (req.report_out) *req.report_out = report;
   if (req.write_outputs) {
-    std::error_code ec;
-    std::filesystem::create_directories(req.out_dir, ec);
-    std::ofstream f(req.out_dir + "/report.json");
-    f << report.dump(2) << "\n";
-    if (ec || !f) {
-      std::fprintf(stderr, "gyrostab controller: cannot write %s/report.json\n", req.out_dir.c_str());
+    std::string error;
+    if (!check_output_dir(req.out_dir, error) ||
+        !write_file_atomic(req.out_dir + "/report.json", report.dump(2) + "\n", error)) {
+      std::fprintf(stderr, "gyrostab controller: %s\n", error.c_str());
       return 3;
     }
   }
@@ -316,6 +368,17 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
   if (link.stop_signal != 0) {
     std::fprintf(stderr, "gyrostab controller: %s: %s\n", loop.name.c_str(), happened.c_str());
     return 128 + link.stop_signal;
+  }
+  if (degraded) {
+    std::fprintf(stderr, "gyrostab controller: %s: %s\n", loop.name.c_str(), happened.c_str());
+    return kExitDegraded;
+  }
+  if (const std::uint64_t refused = refused_by_guard(ep.guard()); refused > 0) {
+    std::fprintf(stderr,
+                 "gyrostab controller: %s: completed, but %llu frames on the link were not this session's or failed its "
+                 "authentication (report.json link.session.refused); none was acted on\n",
+                 loop.name.c_str(), static_cast<unsigned long long>(refused));
+    return kExitForeignFrames;
   }
   return 0;
 }

@@ -26,7 +26,7 @@ inline nlohmann::json fault_json(const firmware::FaultCounters& f) {
   return {{"good_frames", f.good_frames}, {"missing", f.missing},         {"stale", f.stale},
           {"non_finite", f.non_finite},   {"out_of_range", f.out_of_range}, {"sensor_reported", f.sensor_reported},
           {"frames_lost", f.frames_lost}, {"held_ticks", f.held_ticks},   {"safe_ticks", f.safe_ticks},
-          {"trips", f.trips}};
+          {"trips", f.trips},             {"recoveries", f.recoveries},     {"acknowledgements_refused", f.acknowledgements_refused}};
 }
 
 // A refused start-up check as one line: the reason, the offending value and the computed bounds.

@@ -48,7 +48,7 @@ int run_in_process(const DeviceScene& scene, const RunRequest& req) {
   if (!signals_ok(scene, req)) return 2;
   std::unique_ptr<PlantPort> plant = scene.make_plant(PlantOptions{true, req.ticks});
   std::unique_ptr<ControllerPort> controller = scene.make_controller();
-  Recorder rec(scene.columns(), loop.ticks(), loop.record_every, loop.signals);
+  Recorder rec(scene.columns(), req.ticks >= 0 ? req.ticks : loop.ticks(), loop.record_every, loop.signals);
   LoopConfig run_loop = loop;
   if (req.ticks >= 0) run_loop.duration_s = static_cast<double>(req.ticks) * run_loop.tick_s();
 

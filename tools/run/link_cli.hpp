@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "tools/run/link_identity.hpp"
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {
@@ -73,6 +74,20 @@ inline void add_link_options(CLI::App* cmd, RunRequest& req, LinkSide side) {
   cmd->add_flag(
       "!--can-no-filter", t.can_filter,
       "receive every frame on the interface (no kernel id filter): unknown ids are counted, not dropped");
+  cmd->add_option("--key-file", t.key_file,
+                  "authenticate every frame with this 128-bit key (32 hexadecimal digits, mode 600): frames "
+                  "without its MAC are refused (docs/transport.md)")
+      ->check(CLI::ExistingFile);
+  if (side != LinkSide::kRun) {
+    cmd->add_option_function<std::string>(
+           "--session",
+           [&t](const std::string& v) {
+             if (!parse_link_id(v, t.session)) throw CLI::ValidationError("--session", "an id in [1, 2^32): " + v);
+           },
+           "the link's session id (0x... or decimal; default: the plant draws one, the controller binds to "
+           "the plant of its first handshake)")
+        ->group("Session");
+  }
   cmd->add_option("--ticks", req.ticks, "run exactly this many ticks instead of the scene's duration")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--lcm-url", t.lcm_url, "LCM provider URL (default udpm://239.255.76.67:7667?ttl=0)");
@@ -119,6 +134,10 @@ inline void add_link_options(CLI::App* cmd, RunRequest& req, LinkSide side) {
         },
         help);
   };
+  cmd->add_option("--loss", t.loss,
+                  "fault injection: each frame this side sends (with run: both sides) is lost on the way with "
+                  "this probability, from a seeded stream")
+      ->check(CLI::Range(0.0, 0.9));
   if (side != LinkSide::kController) {
     fault_option("--drop-sensor", t.sensor_drop,
                  "fault injection: the plant withholds the sensor frames of TICK:COUNT");
@@ -138,7 +157,7 @@ inline std::string check_inproc_options(const RunRequest& req) {
   const TransportOptions& t = req.transport;
   if (t.transport != "inproc") return "";
   const TransportOptions d;
-  if (t.real_time || t.jitter_max_us > 0 || t.sensor_drop.from >= 0 || t.sensor_corrupt.from >= 0 ||
+  if (t.real_time || t.jitter_max_us > 0 || t.loss > 0 || t.sensor_drop.from >= 0 || t.sensor_corrupt.from >= 0 ||
       t.actuator_drop.from >= 0 || t.actuator_corrupt.from >= 0 || t.lcm_url != d.lcm_url ||
       !t.lcm_actuator_url.empty() || !t.channel_suffix.empty() || t.spin_us != d.spin_us ||
       t.timeout_ms != d.timeout_ms || t.start_timeout_ms != d.start_timeout_ms ||

@@ -7,6 +7,8 @@
 
 #include "hil/link/link_counters.hpp"
 #include "hil/rt/latency_histogram.hpp"
+#include "hil/link/link_guard.hpp"
+#include "tools/run/link_identity.hpp"
 #include "tools/run/link_settings.hpp"
 #include "tools/run/link_stats.hpp"
 
@@ -23,6 +25,7 @@ inline nlohmann::json counters_json(const hil::LinkCounters& c) {
           {"resent", c.resent},
           {"dropped_by_fault", c.dropped_by_fault},
           {"corrupted_by_fault", c.corrupted_by_fault},
+          {"lost_by_fault", c.lost_by_fault},
           {"received", c.received},
           {"accepted", c.accepted},
           {"rejected",
@@ -34,11 +37,28 @@ inline nlohmann::json counters_json(const hil::LinkCounters& c) {
             {"out_of_range", c.rejected_out_of_range},
             {"stale", c.rejected_stale},
             {"repeated", c.rejected_repeated},
-            {"ahead", c.rejected_ahead}}},
+            {"ahead", c.rejected_ahead},
+            {"sequence_jump", c.rejected_jump},
+            {"before_handshake", c.rejected_before_handshake}}},
           {"missed_frames", c.missed_frames},
           {"timeouts", c.timeouts},
           {"resynced", c.resynced}};
 }
+
+// report.json link.session: who this end was, whom it bound to, and what the guard refused.
+inline nlohmann::json session_json(const hil::LinkGuard& g) {
+  const hil::GuardCounters& c = g.counters();
+  return {{"session", format_link_id(g.session())},
+          {"own_id", format_link_id(g.own_sender())},
+          {"peer", g.bound() ? nlohmann::json(format_link_id(g.peer())) : nlohmann::json(nullptr)},
+          {"authenticated", g.authenticated()},
+          {"refused",
+           {{"recorded", c.recorded}, {"foreign", c.foreign}, {"bad_mac", c.bad_mac}, {"replayed", c.replayed}}}};
+}
+
+// Frames on the link that were not this session's, or failed its authentication: the run's results stand (none
+// of them was acted on), but the link was shared or attacked, and the exit code says so.
+inline std::uint64_t refused_by_guard(const hil::LinkGuard& g) { return g.counters().rejected(); }
 
 inline nlohmann::json link_timing_json(const LinkStats& s, const LinkSettings& settings) {
   nlohmann::json t{{"mode", settings.real_time ? "real_time" : "lockstep"},

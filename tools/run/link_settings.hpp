@@ -2,7 +2,9 @@
 // from the scene's loop and the request's transport options (run_role.hpp). Times in CLOCK_MONOTONIC ns.
 //
 // Lockstep (default): no clock; the plant waits for the actuator frame of tick k before it integrates tick k,
-// the controller waits for the sensor frame of tick k. A wait ends at the receive timeout (the peer is lost);
+// the controller waits for the sensor frame of tick k. A wait ends at the receive timeout (the peer is lost),
+// except the plant's wait for a command withheld by a controller that answered the tick before: after
+// kMissingCommandFraction of the timeout that tick's drives get zero torque and the loop goes on;
 // while waiting, the plant publishes the sensor frame again every kResendNs (a datagram lost on the way, or a
 // controller that subscribed after the first publish), and the controller answers a repeated sensor frame
 // with its cached actuator frame (at most once per kResendNs).
@@ -31,6 +33,9 @@ namespace gyrostab::tools {
 inline constexpr std::int64_t kResendNs = 20'000'000;
 inline constexpr double kPlantWindow = 0.75;
 inline constexpr double kControllerWindow = 0.5;
+// Lockstep: the share of the receive timeout the plant waits for a command that its controller, heard on the
+// previous tick, withholds; then that tick's drives get zero torque and the loop goes on.
+inline constexpr double kMissingCommandFraction = 0.5;
 // Lockstep: a sensor frame may skip at most this many ticks ahead (the plant withheld frames); a frame
 // further ahead is rejected as "ahead" (a forged or corrupted tick must not make the controller step a
 // billion times).
@@ -38,9 +43,20 @@ inline constexpr std::int64_t kMaxAheadTicks = 1000;
 // Real time: the controller follows a late frame's phase only this many ticks back (a forged old tick must
 // not stall it for long).
 inline constexpr std::int64_t kMaxResyncTicks = 10;
+// The controller process as supervisor: a safe state tripped by the link alone (frames missing or stale) is
+// acknowledged once this many frames in a row have been accepted again (10 ms at 1 kHz); the fault monitor
+// then leaves it on the next good frame. A sensor fault (NaN, out of range, reported) stays latched.
+inline constexpr std::int64_t kAcknowledgeAfterGoodFrames = 10;
+// A link run whose controller spent more than this share of its ticks in the safe state did not do its job:
+// its verdict is "degraded", not "completed", and it exits kExitDegraded.
+inline constexpr double kMaxSafeShare = 0.05;
+inline constexpr int kExitDegraded = 8;
 // Exit code of a process whose peer fell silent for the receive timeout (and of `run --transport lcm` when a
 // process of the pair was lost).
 inline constexpr int kExitPeerLost = 6;
+// The run completed, but the link carried frames of another session, recorded frames or frames that failed
+// authentication: none was acted on; the bus was shared, replayed onto or attacked (link.session.refused).
+inline constexpr int kExitForeignFrames = 7;
 
 struct LinkSettings {
   bool real_time{false};

@@ -42,6 +42,7 @@
 #include "tools/run/can_link_setup.hpp"
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/command_wait.hpp"
+#include "tools/run/link_identity.hpp"
 #include "tools/run/link_report.hpp"
 #include "tools/run/link_settings.hpp"
 #include "tools/run/link_stats.hpp"
@@ -80,6 +81,7 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
   msg::ActuatorFrame command{};
   std::int64_t epoch = 0;
   std::int64_t last_heard = hil::monotonic_ns();
+  std::int64_t missing_in_a_row = 0;
   std::int64_t stop_after = std::numeric_limits<std::int64_t>::max();
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t k = 0; k < ticks && k <= stop_after; ++k) {
@@ -124,9 +126,16 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
     } else {
       const bool lockstep = handshake || !s.real_time;
       const auto window = static_cast<std::int64_t>(kPlantWindow * static_cast<double>(s.period_ns));
-      const std::int64_t deadline = lockstep ? hil::kNoDeadline : epoch + k * s.period_ns + window;
-      const std::int64_t lost_at =
-          (lockstep ? t_sent : last_heard) + (handshake ? s.start_timeout_ns : s.timeout_ns);
+      // Lockstep: a controller that answered the previous tick but withholds this tick's command gets
+      // kMissingCommandFraction of the receive timeout, then the drives get zero torque for this tick and the
+      // loop goes on; a second silent tick in a row waits for the receive timeout (the controller is lost).
+      std::int64_t deadline = epoch + k * s.period_ns + window;
+      if (lockstep) {
+        deadline = handshake || missing_in_a_row > 0
+                       ? hil::kNoDeadline
+                       : t_sent + static_cast<std::int64_t>(kMissingCommandFraction * static_cast<double>(s.timeout_ns));
+      }
+      const std::int64_t lost_at = (handshake ? t_sent : last_heard) + (handshake ? s.start_timeout_ns : s.timeout_ns);
       w = wait_for_command(ep, order, limits, k, deadline, lockstep, lost_at, s, command);
     }
     const std::int64_t t_got = hil::monotonic_ns();
@@ -139,9 +148,12 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
       link.transport_error = true;
       break;
     }
+    if (!dropped || s.real_time) missing_in_a_row = w == CommandWait::kAccepted ? 0 : missing_in_a_row + 1;
     if (w == CommandWait::kAccepted) {
       last_heard = t_got;
       stats.round_trip.add(t_got - t_sent);
+      // The handshake's command names the controller this session is with; any other sender is foreign.
+      if (!ep.guard().bound()) ep.bind_to_last();
     } else {
       ++ep.counters().missed_frames;
       if (w == CommandWait::kLost && !link.peer_lost) {
@@ -178,6 +190,11 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
 template <class Transport>
 int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& transport,
                    const nlohmann::json& link_info, const hil::RtSetup* rt) {
+  LinkIdentity guard;
+  if (std::string error; !link_identity(req.transport, /*plant_side=*/true, guard, error)) {
+    std::fprintf(stderr, "gyrostab plant: %s\n", error.c_str());
+    return 2;
+  }
   // As in process: --ticks sets the loop's length only; the recorder, the report's scene block and the
   // outputs keep the scene's own configuration.
   const LoopConfig& loop = scene.loop();
@@ -186,9 +203,10 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   if (!signals_ok(scene, req)) return 2;
   std::unique_ptr<PlantPort> plant = scene.make_plant(PlantOptions{false, req.ticks});
   const hil::ActuatorLimits limits = scene.actuator_limits();
-  Recorder rec(scene.columns(), loop.ticks(), loop.record_every, loop.signals);
+  Recorder rec(scene.columns(), req.ticks >= 0 ? req.ticks : loop.ticks(), loop.record_every, loop.signals);
   const LinkSettings s = link_settings(run_loop, req.transport);
-  hil::FrameEndpoint<Transport> ep(transport);
+  hil::FrameEndpoint<Transport> ep(transport, hil::plant_guard(guard.session, guard.key));
+  if (req.transport.loss > 0) ep.inject_loss(req.transport.loss, loop.seed, 1);
   auto stats = std::make_unique<LinkStats>();
   PlantLinkOutcome link;
   LoopOutcome outcome;
@@ -224,6 +242,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   nlohmann::json l = link_info;
   l["role"] = "plant";
   l["counters"] = counters_json(ep.counters());
+  l["session"] = session_json(ep.guard());
   if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level
   l["actuator_limits"] = limits.from_scene
                              ? nlohmann::json{{"torque_Nm", {limits.torque_Nm[0], limits.torque_Nm[1]}},
@@ -281,6 +300,13 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
     std::fprintf(stderr, "gyrostab plant: %s; outputs up to it are written\n",
                  describe_non_finite(loop.name, outcome.diverged_tick, outcome.diverged_state).c_str());
     return 3;
+  }
+  if (const std::uint64_t refused = refused_by_guard(ep.guard()); refused > 0) {
+    std::fprintf(stderr,
+                 "gyrostab plant: %s: completed, but %llu frames on the link were not this session's or failed its "
+                 "authentication (report.json link.session.refused); none was acted on\n",
+                 loop.name.c_str(), static_cast<unsigned long long>(refused));
+    return kExitForeignFrames;
   }
   return 0;
 }

@@ -1,6 +1,7 @@
 #include "tools/run/process_pair.hpp"
 
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,7 +17,11 @@
 #include <thread>
 #include <vector>
 
+#include "hil/link/link_guard.hpp"
+#include "tools/log/stop_signal.hpp"
+#include "tools/run/link_identity.hpp"
 #include "tools/run/link_settings.hpp"
+#include "tools/run/output_dir.hpp"
 
 namespace gyrostab::tools {
 namespace {
@@ -25,11 +30,14 @@ std::string fault_arg(const FrameFault& f) {
   return std::to_string(f.from) + ":" + std::to_string(f.count);
 }
 
-std::vector<std::string> child_args(const RunRequest& req, const std::string& role,
-                                    const std::string& suffix) {
+std::vector<std::string> child_args(const RunRequest& req, const std::string& role, const std::string& suffix,
+                                    std::uint64_t session) {
   const TransportOptions& t = req.transport;
   std::vector<std::string> a{"gyrostab", role, req.scene_path, "--out",
                              role == "plant" ? req.out_dir : req.out_dir + "/controller"};
+  // One session for both children, so the controller can bind to nobody else's plant.
+  a.insert(a.end(), {"--session", format_link_id(session)});
+  if (!t.key_file.empty()) a.insert(a.end(), {"--key-file", t.key_file});
   if (req.ticks >= 0) a.insert(a.end(), {"--ticks", std::to_string(req.ticks)});
   if (!t.lcm_actuator_url.empty()) a.insert(a.end(), {"--lcm-actuator-url", t.lcm_actuator_url});
   a.insert(a.end(), {"--lcm-url", t.lcm_url, "--channel-suffix", suffix, "--timeout-ms",
@@ -46,6 +54,11 @@ std::vector<std::string> child_args(const RunRequest& req, const std::string& ro
   if (t.real_time) {
     a.insert(a.end(), {"--real-time", "--spin-us", std::to_string(t.spin_us), "--rt-priority",
                        std::to_string(t.rt_priority)});
+  }
+  if (t.loss > 0) {
+    char l[32];
+    std::snprintf(l, sizeof l, "%.17g", t.loss);
+    a.insert(a.end(), {"--loss", l});
   }
   if (role == "plant") {
     if (!t.log_path.empty()) a.insert(a.end(), {"--log", t.log_path});
@@ -64,12 +77,20 @@ std::vector<std::string> child_args(const RunRequest& req, const std::string& ro
   return a;
 }
 
+// The stop signal the parent received (SIGINT, SIGTERM), forwarded to the children by the wait loop.
+volatile sig_atomic_t g_stop_signal = 0;
+void on_stop_signal(int signo) { g_stop_signal = signo; }
+
 pid_t spawn(const std::vector<std::string>& args) {
   std::vector<char*> argv;
   for (const auto& s : args) argv.push_back(const_cast<char*>(s.c_str()));
   argv.push_back(nullptr);
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid == 0) {
+    // A child dies with its parent (SIGTERM: it stops at a tick boundary and writes what it has), even
+    // when the parent is killed with SIGKILL; the check closes the race of a parent gone before prctl.
+    if (prctl(PR_SET_PDEATHSIG, SIGTERM) != 0 || getppid() != parent) _exit(127);
     execv("/proc/self/exe", argv.data());
     std::fprintf(stderr, "gyrostab run: cannot exec /proc/self/exe: %s\n", std::strerror(errno));
     _exit(127);
@@ -109,24 +130,37 @@ bool read_json(const std::string& path, nlohmann::json& out) {
 int run_process_pair(const RunRequest& req) {
   const std::string suffix =
       req.transport.channel_suffix.empty() ? "_" + std::to_string(getpid()) : req.transport.channel_suffix;
+  std::string out_error;
+  if (!check_output_dir(req.out_dir, out_error) || !check_output_dir(req.out_dir + "/controller", out_error)) {
+    std::fprintf(stderr, "gyrostab run: %s\n", out_error.c_str());
+    return 2;
+  }
   std::error_code ec;
-  std::filesystem::create_directories(req.out_dir + "/controller", ec);
   std::filesystem::remove(req.out_dir + "/report.json", ec);
   std::filesystem::remove(req.out_dir + "/controller/report.json", ec);
   std::fflush(nullptr);
+  const std::uint64_t session = req.transport.session != 0 ? req.transport.session : hil::draw_link_id();
+  if (session == 0) {
+    std::fprintf(stderr, "gyrostab run: the OS's random source (getrandom) failed: cannot draw a session id\n");
+    return 3;
+  }
+  // Installed before the children exist, so a stop request is never lost: the wait loop forwards it to both
+  // (they stop at a tick boundary and write their outputs), then merges what they wrote.
+  struct sigaction sa{};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;  // no SA_RESTART: waitpid returns EINTR and the loop forwards at once
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
   Child controller{"controller"}, plant{"plant"};
-  controller.pid = spawn(child_args(req, "controller", suffix));
-  plant.pid = spawn(child_args(req, "plant", suffix));
+  controller.pid = spawn(child_args(req, "controller", suffix, session));
+  plant.pid = spawn(child_args(req, "plant", suffix, session));
   if (controller.pid < 0 || plant.pid < 0) {
     std::fprintf(stderr, "gyrostab run: fork failed: %s\n", std::strerror(errno));
     if (controller.pid > 0) kill(controller.pid, SIGTERM);
     if (plant.pid > 0) kill(plant.pid, SIGTERM);
     return 3;
   }
-  // The parent only waits: a Ctrl-C reaches the children through the terminal's process group and they stop
-  // at a tick boundary; the parent must outlive them to merge their reports.
-  signal(SIGINT, SIG_IGN);
-  signal(SIGTERM, SIG_IGN);
   // A child that exits with an error leaves the other waiting for nothing: it detects that itself within its
   // receive timeout and reports it; past that (and a margin for writing its outputs) it is stopped with
   // SIGTERM. A killed child is the other's to detect (receive timeout, safe state).
@@ -136,7 +170,13 @@ int run_process_pair(const RunRequest& req) {
         .count();
   };
   long long stop_other_at = -1;
+  int forwarded = 0;
   while (!controller.done || !plant.done) {
+    if (g_stop_signal != 0 && forwarded == 0) {
+      forwarded = g_stop_signal;
+      if (!plant.done) kill(plant.pid, forwarded);
+      if (!controller.done) kill(controller.pid, forwarded);
+    }
     int status = 0;
     const pid_t pid = waitpid(-1, &status, stop_other_at >= 0 ? WNOHANG : 0);
     if (pid < 0) {
@@ -172,8 +212,14 @@ int run_process_pair(const RunRequest& req) {
     report["controller_process"] = ctl;
   }
   std::string happened;
+  const auto completed = [](const Child& c) { return c.exited() && (c.code() == 0 || c.code() == kExitForeignFrames); };
+  bool foreign = false;
   if (plant.exited() && controller.exited() && plant.code() == 0 && controller.code() == 0) {
     happened = "completed";
+  } else if (completed(plant) && completed(controller)) {
+    foreign = true;
+    happened = "completed; frames of another session, recorded frames or frames that failed authentication were on "
+               "the link and refused, none acted on (link.session.refused, controller_process.link.session.refused)";
   } else {
     happened = plant.how() + ", " + controller.how();
     if (have_plant && report.contains("link"))
@@ -181,19 +227,17 @@ int run_process_pair(const RunRequest& req) {
     if (have_ctl && ctl.contains("link"))
       happened += "; controller: " + ctl["link"].value("what_happened", "");
   }
+  if (forwarded != 0) happened = std::string("stopped by ") + signal_name(forwarded) + "; " + happened;
   report["processes"] = {{"transport", req.transport.transport},
                          {"lcm_url", req.transport.lcm_url},
                          {"channel_suffix", suffix},
+                         {"session", format_link_id(session)},
                          {"plant", plant.json()},
                          {"controller", controller.json()},
                          {"what_happened", happened}};
-  {
-    std::ofstream f(req.out_dir + "/report.json");
-    f << report.dump(2) << "\n";
-    if (!f) {
-      std::fprintf(stderr, "gyrostab run: cannot write %s/report.json\n", req.out_dir.c_str());
-      return 3;
-    }
+  if (!write_file_atomic(req.out_dir + "/report.json", report.dump(2) + "\n", out_error)) {
+    std::fprintf(stderr, "gyrostab run: %s\n", out_error.c_str());
+    return 3;
   }
   if (happened == "completed") {
     std::printf("%s: wrote %s/report.json, signals.csv (plant and controller over %s)\n",
@@ -202,6 +246,8 @@ int run_process_pair(const RunRequest& req) {
     return 0;
   }
   std::fprintf(stderr, "gyrostab run: %s\n", happened.c_str());
+  if (foreign) return kExitForeignFrames;
+  if (forwarded != 0) return 128 + forwarded;
   if (plant.killed() || controller.killed()) return kExitPeerLost;
   if (plant.code() != 0) return plant.code();
   return controller.code();

@@ -1,9 +1,46 @@
 #include "tools/run/recorder.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 
 namespace gyrostab::tools {
+
+RecordingSize recording_size(std::int64_t ticks, int every, std::size_t columns) {
+  RecordingSize r;
+  const std::int64_t e = every < 1 ? 1 : every;
+  r.rows = (ticks < 0 ? 0 : ticks) / e + 1;
+  r.columns = static_cast<std::int64_t>(columns) + 1;
+  const double bytes = static_cast<double>(r.rows) * static_cast<double>(r.columns) * 8.0;
+  r.overflow = bytes > 9.0e18;
+  r.table_bytes = r.overflow ? INT64_MAX : r.rows * r.columns * 8;
+  r.csv_bytes_estimate = r.overflow ? INT64_MAX : r.rows * r.columns * kCsvBytesPerValue;
+  return r;
+}
+
+namespace {
+std::string mib(std::int64_t bytes) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3g MiB", static_cast<double>(bytes) / 1048576.0);
+  return buf;
+}
+}  // namespace
+
+std::string recording_problem(const RecordingSize& s) {
+  if (!s.overflow && s.table_bytes <= kRecorderCeilingBytes) return "";
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "the recording would need %s (%lld rows of %lld columns), above the ceiling of %s; "
+                "raise [output] record_every, name fewer [output] signals or shorten the run",
+                s.overflow ? "more than 8 EiB" : mib(s.table_bytes).c_str(), static_cast<long long>(s.rows),
+                static_cast<long long>(s.columns), mib(kRecorderCeilingBytes).c_str());
+  return buf;
+}
+
+std::string recording_warning(const RecordingSize& s) {
+  if (s.csv_bytes_estimate <= kCsvWarningBytes) return "";
+  return "signals.csv will be about " + mib(s.csv_bytes_estimate) + " (" + std::to_string(s.rows) +
+         " rows); [output] record_every or [output] signals make it smaller";
+}
 
 Recorder::Recorder(std::vector<std::string> columns, std::int64_t ticks, int every,
                    const std::vector<std::string>& selection)

@@ -11,6 +11,27 @@
 
 namespace gyrostab::tools {
 
+// What a run may record: the table is sized before tick 0, so its memory is known before anything runs, and
+// a scene (or a --ticks) that would need more than the ceiling is refused by `check` and `run` alike with the
+// size it would need. A CSV beyond the warning size is written, with a warning first.
+inline constexpr std::int64_t kRecorderCeilingBytes = std::int64_t{1} << 30;  // 1 GiB of table
+inline constexpr std::int64_t kCsvWarningBytes = 200'000'000;                 // 200 MB of CSV
+inline constexpr std::int64_t kCsvBytesPerValue = 20;  // "%.17g," of a typical signal (measured: 19-24)
+
+struct RecordingSize {
+  std::int64_t rows{0};
+  std::int64_t columns{0};  // recorded ones, t_s included
+  std::int64_t table_bytes{0};
+  std::int64_t csv_bytes_estimate{0};
+  bool overflow{false};  // more than an int64 of bytes: refused like an oversized table
+};
+// The size of a recording of `ticks` ticks, one row every `every`, of `columns` columns (besides t_s).
+RecordingSize recording_size(std::int64_t ticks, int every, std::size_t columns);
+// "" if `size` is within the ceiling, else why not, with what would help.
+std::string recording_problem(const RecordingSize& size);
+// "" or the warning about the CSV's size.
+std::string recording_warning(const RecordingSize& size);
+
 class Recorder {
  public:
   // `selection`: the column names to keep, in the CSV in this order; empty = every column.

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tools/run/output_dir.hpp"
+
 namespace gyrostab::tools {
 
 nlohmann::json scene_summary(const LoopConfig& cfg, const std::string& scene_path) {
@@ -42,29 +44,24 @@ bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recor
   if (req.report_out) *req.report_out = report;
   if (req.csv_out) *req.csv_out = rec.csv();
   if (!req.write_outputs) return true;
-  std::error_code ec;
-  std::filesystem::create_directories(req.out_dir, ec);
-  if (ec) {
-    error = "cannot create " + req.out_dir + ": " + ec.message();
-    return false;
-  }
-  {
-    std::ofstream f(req.out_dir + "/report.json");
-    f << report.dump(2) << "\n";
-    if (!f) {
-      error = "cannot write " + req.out_dir + "/report.json";
-      return false;
-    }
-  }
-  if (!rec.write_csv(req.out_dir + "/signals.csv", error)) return false;
+  OutputSet out(req.out_dir, {"report.json", "signals.csv", "signals.png"});
+  if (!out.open(error)) return false;
+  if (!out.write("report.json", report.dump(2) + "\n", error)) return false;
+  if (!rec.write_csv(out.staged("signals.csv"), error)) return false;
   const char* here = std::getenv("GYROSTAB_PLOT_SCRIPT");  // set and empty: no plots (tests, the CAN VM)
   if (cfg.plots && (here == nullptr || *here != '\0')) {
     const std::string script = here ? here : GYROSTAB_SOURCE_DIR "/tools/plot/plot_run.py";
-    const std::string cmd = "/usr/bin/python3 '" + script + "' '" + req.out_dir + "' 2>&1";
-    if (std::system(cmd.c_str()) != 0) {
-      std::fprintf(stderr, "gyrostab: plots not written (needs /usr/bin/python3 with python3-matplotlib); "
-                           "report.json and signals.csv are complete\n");
+    std::string why;
+    if (run_program({"/usr/bin/python3", script, out.staging_dir()}, why) != 0) {
+      std::fprintf(stderr, "gyrostab: plots not written (needs /usr/bin/python3 with python3-matplotlib%s); "
+                           "report.json and signals.csv are complete\n",
+                   why.empty() ? "" : ("; " + why).c_str());
     }
+  }
+  std::vector<std::string> written;
+  if (!out.commit(written, error)) return false;
+  if (req.role != Role::kController) {
+    std::printf("%s: wrote %s in %s\n", req.scene_path.c_str(), list_names(written).c_str(), req.out_dir.c_str());
   }
   return true;
 }

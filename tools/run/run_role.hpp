@@ -52,6 +52,10 @@ struct TransportOptions {
   double can_bitrate{1e6};            // arbitration bit rate for the bus-load check [bit/s]
   double can_data_bitrate{5e6};       // CAN FD data-phase bit rate (bit-rate switch) [bit/s]
   bool can_filter{true};              // kernel filter on the ids this side receives (false: every frame, counted)
+  double loss{0.0};                   // fault injection: each frame sent is lost with this probability [-]
+  // Sessions and authentication (tools/run/link_identity.hpp, docs/transport.md):
+  std::string key_file;               // the link key: every frame carries a MAC (empty: session binding only)
+  std::uint64_t session{0};           // the session both ends use (0: the plant draws one, the controller binds)
 };
 
 }  // namespace gyrostab::tools

@@ -1,7 +1,11 @@
 #include "tools/scene/scene_reader.hpp"
 
+#include "tools/scene/toml_limits.hpp"
+
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -69,20 +73,35 @@ SceneReader& SceneReader::operator=(SceneReader&&) noexcept = default;
 
 bool SceneReader::open(const std::string& path) {
   name_ = path;
-  try {
-    impl_->root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream s;
-    s << path << ":" << e.source().begin.line << ":" << e.source().begin.column << ": not valid TOML: "
-      << e.description();
-    errors_.push_back(s.str());
+  // Read here, not by toml::parse_file: a missing or oversized file gets its own message, and the text passes
+  // the nesting limit before the parser sees it.
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) {
+    errors_.push_back(path + ": cannot read the scene file (" + ec.message() + ")");
     return false;
   }
-  return true;
+  if (size > kMaxSceneBytes) {
+    errors_.push_back(path + ": " + std::to_string(size) + " bytes, larger than a scene may be (" +
+                      std::to_string(kMaxSceneBytes) + " bytes); not parsed");
+    return false;
+  }
+  std::ifstream f(path, std::ios::binary);
+  std::ostringstream text;
+  text << f.rdbuf();
+  if (!f) {
+    errors_.push_back(path + ": cannot read the scene file");
+    return false;
+  }
+  return parse(text.str(), path);
 }
 
 bool SceneReader::parse(std::string_view text, const std::string& name) {
   name_ = name;
+  if (const std::string why = toml_limits_problem(text, name); !why.empty()) {
+    errors_.push_back(why);
+    return false;
+  }
   try {
     impl_->root = toml::parse(text, name);
   } catch (const toml::parse_error& e) {

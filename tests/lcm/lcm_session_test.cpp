@@ -1,0 +1,192 @@
+// Who may steer the loop over LCM (hil/link/link_guard.hpp, docs/transport.md, sessions and authentication):
+//   - two runs on the same channels: each pair's frames are foreign to the other; nothing foreign is acted
+//     on (both results are the in-process ones, bit for bit) and both runs say so (exit 7);
+//   - pairs started by hand on the same channels: detected, never a silent success;
+//   - a bus log played onto a live bus (lcm-logplayer): its frames are refused as recorded;
+//   - with a link key, a third process that copies every envelope and sends forged commands ahead of the
+//     genuine ones changes nothing: every forgery fails its MAC, the run is the in-process run.
+#include <gtest/gtest.h>
+#include <lcm/lcm.h>
+#include <sys/stat.h>
+
+#include <atomic>
+#include <cmath>
+
+#include "hil/lcm/frame_codec.hpp"
+#include "tests/lcm/lcm_test_support.hpp"
+
+namespace gyrostab::testing {
+namespace {
+
+struct Outputs {
+  std::string figures;
+  std::string csv;
+};
+
+Outputs outputs_of(const std::string& dir) {
+  const nlohmann::json r = read_json(dir + "/report.json");
+  return {r.contains("figures") ? r["figures"].dump() : "", read_file(dir + "/signals.csv")};
+}
+
+Outputs in_process(const std::string& scene_path, const std::string& dir, const std::string& ticks) {
+  EXPECT_EQ(run({gyrostab_bin(), "run", scene_path, "--ticks", ticks, "--no-progress", "--out", dir}).code, 0);
+  return outputs_of(dir);
+}
+
+void expect_identical(const Outputs& a, const Outputs& b, const std::string& what) {
+  ASSERT_FALSE(a.csv.empty()) << what;
+  EXPECT_EQ(a.figures, b.figures) << what << ": figures differ";
+  EXPECT_TRUE(a.csv == b.csv) << what << ": signals.csv differs";
+}
+
+std::uint64_t refused(const nlohmann::json& link, const char* kind) {
+  return link["session"]["refused"][kind].get<std::uint64_t>();
+}
+
+TEST(LcmSession, TwoRunsOnTheSameChannelsRefuseEachOthersFrames) {
+  TempDir d;
+  const std::string a = scene("monorail.toml"), b = scene("power-stabilizer.toml");
+  const Outputs ref_a = in_process(a, d / "ref_a", "3000"), ref_b = in_process(b, d / "ref_b", "3000");
+  const std::vector<std::string> shared{"--transport", "lcm", "--ticks", "3000", "--channel-suffix", "_shared"};
+  const pid_t pa = spawn(cat({gyrostab_bin(), "run", a, "--out", d / "a"}, shared));
+  const pid_t pb = spawn(cat({gyrostab_bin(), "run", b, "--out", d / "b"}, shared));
+  const Exit ea = wait_for(pa), eb = wait_for(pb);
+  expect_identical(ref_a, outputs_of(d / "a"), "monorail sharing its channels");
+  expect_identical(ref_b, outputs_of(d / "b"), "power stabilizer sharing its channels");
+  for (const auto& [dir, e] : {std::pair{d / "a", ea}, std::pair{d / "b", eb}}) {
+    const nlohmann::json r = read_json(dir + "/report.json");
+    const std::uint64_t foreign =
+        refused(r["link"], "foreign") + refused(r["controller_process"]["link"], "foreign");
+    // Unless the runs did not overlap at all, each saw the other's frames and says so.
+    if (foreign > 0) {
+      EXPECT_EQ(e.code, 7) << dir;
+    } else {
+      EXPECT_EQ(e.code, 0) << dir;
+    }
+  }
+  const std::uint64_t seen = refused(read_json(d / "a/report.json")["link"], "foreign") +
+                             refused(read_json(d / "b/report.json")["link"], "foreign");
+  EXPECT_GT(seen, 0u) << "the two runs never overlapped";
+}
+
+TEST(LcmSession, PairsStartedByHandOnOneBusAreNeverASilentSuccess) {
+  TempDir d;
+  const std::string m = scene("monorail.toml");
+  const std::vector<std::string> common{"--ticks", "3000", "--timeout-ms", "500", "--start-timeout-ms", "3000"};
+  // No suffix, no session: as a user starts them in four terminals.
+  std::vector<pid_t> pids;
+  for (const char* name : {"p1", "p2"}) pids.push_back(spawn(cat({gyrostab_bin(), "plant", m, "--out", d / name}, common)));
+  for (const char* name : {"c1", "c2"})
+    pids.push_back(spawn(cat({gyrostab_bin(), "controller", m, "--out", d / name}, common)));
+  int silent_successes = 0;
+  for (const pid_t p : pids) {
+    const Exit e = wait_for(p);
+    EXPECT_NE(e.code, -1) << "a process crashed";
+    if (e.code == 0) ++silent_successes;
+  }
+  EXPECT_EQ(silent_successes, 0) << "a process shared its bus with another pair and exited 0";
+}
+
+TEST(LcmSession, ALogPlayedOntoALiveBusIsRefusedAsRecorded) {
+  if (std::system("command -v lcm-logplayer >/dev/null") != 0) GTEST_SKIP() << "no lcm-logplayer";
+  TempDir d;
+  const std::string m = scene("monorail.toml");
+  const Outputs ref = in_process(m, d / "ref", "3000");
+  // The recording uses the default channels, and so does a pair started by hand.
+  ASSERT_EQ(run({gyrostab_bin(), "run", m, "--ticks", "3000", "--no-progress", "--log", d / "run.lcmlog", "--out",
+                 d / "rec"})
+                .code,
+            0);
+  const pid_t player = spawn({"/usr/bin/lcm-logplayer", "--speed=1", d / "run.lcmlog"});
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  const std::vector<std::string> common{"--ticks", "3000"};
+  const pid_t c = spawn(cat({gyrostab_bin(), "controller", m, "--out", d / "c"}, common));
+  const Exit p = run(cat({gyrostab_bin(), "plant", m, "--out", d / "p"}, common));
+  const Exit ce = wait_for(c);
+  kill(player, SIGTERM);
+  wait_for(player);
+  expect_identical(ref, outputs_of(d / "p"), "a live pair beside lcm-logplayer");
+  const nlohmann::json pr = read_json(d / "p/report.json"), cr = read_json(d / "c/report.json");
+  EXPECT_GT(refused(pr["link"], "recorded") + refused(cr["link"], "recorded"), 100u);
+  EXPECT_EQ(p.code, refused(pr["link"], "recorded") > 0 ? 7 : 0);
+  EXPECT_EQ(ce.code, refused(cr["link"], "recorded") > 0 ? 7 : 0);
+}
+
+// Copies each genuine command's envelope (session, sender, freshness + 1, its MAC) onto a forged command of
+// the same tick and sends it at once, racing the genuine frame of the next tick.
+struct Forger {
+  lcm_t* lcm{nullptr};
+  std::string actuator_channel;
+  std::uint64_t forged{0};
+
+  void on_actuator(const msg::ActuatorFrame& a, const hil::LinkEnvelope& e) {
+    if (a.gimbal_torque_Nm[msg::kAxis2] == 1999.0) return;  // one of ours
+    msg::ActuatorFrame f = a;
+    f.tick += 1;
+    f.sequence += 1;
+    f.gimbal_torque_Nm[msg::kAxis2] = 1999.0;
+    hil::LinkEnvelope fe = e;
+    fe.freshness += 1;
+    std::uint8_t buf[256];
+    const int n = hil::encode(f, 0, buf, sizeof buf, fe);
+    lcm_publish(lcm, actuator_channel.c_str(), buf, static_cast<unsigned>(n));
+    ++forged;
+  }
+};
+
+void on_actuator_message(const lcm_recv_buf_t* rbuf, const char*, void* user) {
+  msg::ActuatorFrame a{};
+  hil::LinkEnvelope e;
+  if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), a, nullptr, &e) == hil::DecodeError::kOk)
+    static_cast<Forger*>(user)->on_actuator(a, e);
+}
+
+TEST(LcmSession, WithAKeyAForgerOnTheBusChangesNoCommand) {
+  TempDir d;
+  const std::string m = scene("monorail.toml");
+  const Outputs ref = in_process(m, d / "ref", "3000");
+  const std::string key = d / "link.key";
+  {
+    std::ofstream f(key);
+    f << "# the link key of this test\n00112233445566778899aabbccddeeff\n";
+  }
+  ASSERT_EQ(chmod(key.c_str(), 0600), 0);
+  Forger forger;
+  forger.actuator_channel = "GYROSTAB_ACTUATOR_keyed";
+  forger.lcm = lcm_create("udpm://239.255.76.67:7667?ttl=0");
+  ASSERT_NE(forger.lcm, nullptr);
+  lcm_subscription_set_queue_capacity(
+      lcm_subscribe(forger.lcm, forger.actuator_channel.c_str(), on_actuator_message, &forger), 100'000);
+  std::atomic<bool> stop{false};
+  std::thread t([&] {
+    while (!stop) lcm_handle_timeout(forger.lcm, 50);
+  });
+  const Exit e = run({gyrostab_bin(), "run", m, "--transport", "lcm", "--ticks", "3000", "--channel-suffix", "_keyed",
+                      "--key-file", key, "--out", d / "lcm"});
+  stop = true;
+  t.join();
+  lcm_destroy(forger.lcm);
+  EXPECT_GT(forger.forged, 1000u);
+  expect_identical(ref, outputs_of(d / "lcm"), "a keyed run with a forger on its bus");
+  const nlohmann::json r = read_json(d / "lcm/report.json");
+  EXPECT_EQ(r["link"]["session"]["authenticated"], true);
+  EXPECT_GT(refused(r["link"], "bad_mac"), 1000u) << "every forgery fails its MAC";
+  EXPECT_EQ(r["link"]["counters"]["accepted"], 3000);
+  EXPECT_EQ(e.code, 7) << "the run completed, and says that its link was attacked";
+}
+
+TEST(LcmSession, AKeyFileOthersCanReadIsRefused) {
+  TempDir d;
+  const std::string key = d / "open.key";
+  {
+    std::ofstream f(key);
+    f << "00112233445566778899aabbccddeeff\n";
+  }
+  ASSERT_EQ(chmod(key.c_str(), 0644), 0);
+  EXPECT_EQ(run({gyrostab_bin(), "plant", scene("monorail.toml"), "--key-file", key, "--out", d / "p"}).code, 2);
+}
+
+}  // namespace
+}  // namespace gyrostab::testing
+
+GYROSTAB_LCM_TEST_MAIN()
