@@ -1,8 +1,10 @@
 // gyrostab — command-line entry point: demo, run, check, replay, accuracy.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "tools/accuracy/accuracy_command.hpp"
 #include "tools/commands.hpp"
@@ -13,9 +15,55 @@
 #include "tools/scene/scene_keys.hpp"
 #include "hil/can/dbc_writer.hpp"
 
+#ifndef GYROSTAB_VERSION
+#define GYROSTAB_VERSION "unknown"
+#endif
+
+namespace {
+
+// Levenshtein distance: the subcommand a mistyped one was probably meant to be.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// An unknown first word: say which subcommand it is closest to instead of CLI11's "A subcommand is
+// required". true if it printed a message (exit 2).
+bool refuse_unknown_subcommand(CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
+  const std::string word = argv[1];
+  std::string best;
+  std::size_t best_d = 1000;
+  for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    if (sub->get_name() == word) return false;
+    const std::size_t d = edit_distance(word, sub->get_name());
+    if (d < best_d) {
+      best_d = d;
+      best = sub->get_name();
+    }
+  }
+  std::fprintf(stderr, "gyrostab: '%s' is not a command%s (gyrostab --help lists them)\n", word.c_str(),
+               best_d <= 2 ? ("; did you mean '" + best + "'?").c_str() : "");
+  return true;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"gyrostab: gyroscopic stabilizers and gimbal drives"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("gyrostab ") + GYROSTAB_VERSION);
+  app.option_defaults()->always_capture_default();  // help shows every option's default
 
   gyrostab::tools::DemoOptions demo;
   CLI::App* demo_cmd = app.add_subcommand(
@@ -102,6 +150,7 @@ int main(int argc, char** argv) {
   CLI::App* keys_cmd =
       app.add_subcommand("scene-keys", "print docs/scenes.md: every scene key of every device, from the field tables");
 
+  if (refuse_unknown_subcommand(app, argc, argv)) return 2;
   CLI11_PARSE(app, argc, argv);
   if (keys_cmd->parsed()) {
     std::fputs(gyrostab::tools::scenes_markdown().c_str(), stdout);

@@ -91,6 +91,8 @@ class FrameEndpoint {
 
   // Binds to the peer of the frame last returned by receive() (the handshake frame).
   void bind_to_last() { guard_.bind(last_rx_); }
+  // The envelope of the frame last returned by receive().
+  const LinkEnvelope& last_envelope() const { return last_rx_; }
   const LinkGuard& guard() const { return guard_; }
 
   LinkCounters& counters() { return counters_; }

@@ -1,5 +1,6 @@
 // libFuzzer target for the bus log reader (tools/log/bus_log_reader.hpp): arbitrary bytes as a log file,
-// opened and read tick by tick to its end, as `gyrostab replay` does before anything reaches a controller.
+// opened (its scene parsed and checked, as `gyrostab replay` does) and read tick by tick to its end, before
+// anything reaches a controller.
 // Refusing an input is the normal outcome; a crash, a sanitizer report, an uncaught exception, a hang or
 // unbounded memory is a finding. Invariants checked beyond "no crash": reading stops with exactly one of
 // kEnd / kTruncated / kCorrupt; a refusal names a byte offset inside the file; kEnd means the end event's
@@ -12,7 +13,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
+#include "tools/commands.hpp"
 #include "tools/log/bus_log_reader.hpp"
 
 namespace {
@@ -37,6 +40,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   BusLogReader r;
   ReadStatus s = r.open(path);
+  if (s == ReadStatus::kOk) {
+    // The scene the log carries goes where `gyrostab replay` sends it: through the size and nesting limits,
+    // the TOML parser and every device's checks. A refusal must say why.
+    std::vector<std::string> problems;
+    if (gyrostab::tools::check_scene_text(r.scene().toml, "fuzzed-log", &problems) != 0 && problems.empty()) {
+      __builtin_trap();
+    }
+  }
   if (s != ReadStatus::kOk) {
     if (!refused(s)) __builtin_trap();  // kUnreadable: the memfd is always readable
   } else {

@@ -19,16 +19,6 @@ namespace {
 
 constexpr int kTicks = 400;
 
-struct Outputs {
-  std::string figures;
-  std::string csv;
-};
-
-Outputs outputs_of(const std::string& dir) {
-  const nlohmann::json r = read_json(dir + "/report.json");
-  return {r.contains("figures") ? r["figures"].dump() : "", read_file(dir + "/signals.csv")};
-}
-
 // The device and tick of a scene file, read from its text (the [scene] device and [loop] tick_us lines).
 // Plain string search: std::regex trips GCC 12's -Wmaybe-uninitialized under the sanitizers.
 std::string value_after(const std::string& text, const std::string& key) {

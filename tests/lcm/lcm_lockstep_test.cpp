@@ -14,27 +14,8 @@ namespace {
 
 constexpr const char* kTicks = "3000";
 
-struct Outputs {
-  std::string figures;  // report.json "figures", as dumped text
-  std::string csv;
-};
-
-Outputs outputs_of(const std::string& dir) {
-  const nlohmann::json r = read_json(dir + "/report.json");
-  return {r.contains("figures") ? r["figures"].dump() : "", read_file(dir + "/signals.csv")};
-}
-
-Outputs in_process(const std::string& scene_path, const std::string& dir, const std::string& ticks = kTicks) {
-  const Exit e = run({gyrostab_bin(), "run", scene_path, "--ticks", ticks, "--no-progress", "--out", dir});
-  EXPECT_EQ(e.code, 0) << scene_path;
-  return outputs_of(dir);
-}
-
-void expect_identical(const Outputs& a, const Outputs& b, const std::string& what) {
-  ASSERT_FALSE(a.figures.empty()) << what;
-  ASSERT_FALSE(a.csv.empty()) << what;
-  EXPECT_EQ(a.figures, b.figures) << what << ": figures differ";
-  EXPECT_TRUE(a.csv == b.csv) << what << ": signals.csv differs";
+Outputs in_process(const std::string& scene_path, const std::string& dir) {
+  return testing::in_process(scene_path, dir, kTicks);
 }
 
 TEST(LcmLockstep, EveryShippedSceneIsBitIdenticalToInProcess) {

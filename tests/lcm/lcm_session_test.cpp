@@ -18,27 +18,6 @@
 namespace gyrostab::testing {
 namespace {
 
-struct Outputs {
-  std::string figures;
-  std::string csv;
-};
-
-Outputs outputs_of(const std::string& dir) {
-  const nlohmann::json r = read_json(dir + "/report.json");
-  return {r.contains("figures") ? r["figures"].dump() : "", read_file(dir + "/signals.csv")};
-}
-
-Outputs in_process(const std::string& scene_path, const std::string& dir, const std::string& ticks) {
-  EXPECT_EQ(run({gyrostab_bin(), "run", scene_path, "--ticks", ticks, "--no-progress", "--out", dir}).code, 0);
-  return outputs_of(dir);
-}
-
-void expect_identical(const Outputs& a, const Outputs& b, const std::string& what) {
-  ASSERT_FALSE(a.csv.empty()) << what;
-  EXPECT_EQ(a.figures, b.figures) << what << ": figures differ";
-  EXPECT_TRUE(a.csv == b.csv) << what << ": signals.csv differs";
-}
-
 std::uint64_t refused(const nlohmann::json& link, const char* kind) {
   return link["session"]["refused"][kind].get<std::uint64_t>();
 }

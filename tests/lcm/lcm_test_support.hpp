@@ -142,6 +142,32 @@ class TempDir {
   std::string path_;
 };
 
+// What must be bit-identical between two runs of the same scene and seed: report.json "figures" (as dumped
+// text) and signals.csv.
+struct Outputs {
+  std::string figures;
+  std::string csv;
+};
+
+inline Outputs outputs_of(const std::string& dir) {
+  const nlohmann::json r = read_json(dir + "/report.json");
+  return {r.contains("figures") ? r["figures"].dump() : "", read_file(dir + "/signals.csv")};
+}
+
+// `gyrostab run SCENE --ticks TICKS` in process (the reference), its outputs.
+inline Outputs in_process(const std::string& scene_path, const std::string& dir, const std::string& ticks) {
+  const Exit e = run({gyrostab_bin(), "run", scene_path, "--ticks", ticks, "--no-progress", "--out", dir});
+  EXPECT_EQ(e.code, 0) << scene_path;
+  return outputs_of(dir);
+}
+
+inline void expect_identical(const Outputs& a, const Outputs& b, const std::string& what) {
+  ASSERT_FALSE(a.figures.empty()) << what;
+  ASSERT_FALSE(a.csv.empty()) << what;
+  EXPECT_EQ(a.figures, b.figures) << what << ": figures differ";
+  EXPECT_TRUE(a.csv == b.csv) << what << ": signals.csv differs";
+}
+
 // The pids of the direct children of `parent` whose command line contains `needle` (e.g. "gyrostab plant").
 inline std::vector<pid_t> children_matching(pid_t parent, const std::string& needle) {
   std::vector<pid_t> out;

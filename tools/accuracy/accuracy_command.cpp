@@ -4,6 +4,8 @@
 
 #include "tools/accuracy/study_entry.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,7 +21,7 @@ namespace accuracy {
 StudyOptions study_options(const AccuracyRequest& req) {
   StudyOptions opt;
   opt.repeats = req.quick ? 1 : std::max(1, req.repeats);
-  opt.progress = req.progress;
+  opt.progress = req.progress && isatty(STDERR_FILENO);  // a progress line is for a terminal, not a log
   return opt;
 }
 

@@ -152,6 +152,15 @@ std::string format_table(const StudyResult& s) {
   }
   for (double e : comparison_levels(s, 0)) {
     const SpeedUp m = speed_up_at(s, 0, e);
+    if (!std::isfinite(m.ratio) || m.ours_method.empty() || m.peer_method.empty()) {
+      // One side never reaches this error in the grid (a --quick grid is small): no ratio to state.
+      std::snprintf(b, sizeof b, "  at %s error %.0e: %s reaches it in this grid\n", s.quantities[0].name, e,
+                    m.ours_method.empty() && m.peer_method.empty() ? "neither side"
+                    : m.ours_method.empty()                       ? "only a peer"
+                                                                  : "none of the peers");
+      out += b;
+      continue;
+    }
     std::snprintf(b, sizeof b, "  at %s error %.0e: ours %s, peer %s: %.3gx\n", s.quantities[0].name, e,
                   m.ours_method.c_str(), m.peer_method.c_str(), m.ratio);
     out += b;

@@ -373,14 +373,7 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
     std::fprintf(stderr, "gyrostab controller: %s: %s\n", loop.name.c_str(), happened.c_str());
     return kExitDegraded;
   }
-  if (const std::uint64_t refused = refused_by_guard(ep.guard()); refused > 0) {
-    std::fprintf(stderr,
-                 "gyrostab controller: %s: completed, but %llu frames on the link were not this session's or failed its "
-                 "authentication (report.json link.session.refused); none was acted on\n",
-                 loop.name.c_str(), static_cast<unsigned long long>(refused));
-    return kExitForeignFrames;
-  }
-  return 0;
+  return completed_exit_code("controller", loop.name, ep.guard());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // statistics ("timing" additions), see docs/transport.md.
 #pragma once
 
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -56,9 +57,18 @@ inline nlohmann::json session_json(const hil::LinkGuard& g) {
            {{"recorded", c.recorded}, {"foreign", c.foreign}, {"bad_mac", c.bad_mac}, {"replayed", c.replayed}}}};
 }
 
-// Frames on the link that were not this session's, or failed its authentication: the run's results stand (none
-// of them was acted on), but the link was shared or attacked, and the exit code says so.
-inline std::uint64_t refused_by_guard(const hil::LinkGuard& g) { return g.counters().rejected(); }
+// The exit code of a process whose loop completed: 0, or kExitForeignFrames when the link carried frames that
+// were not this session's or failed its authentication — the results stand (none was acted on), but the link
+// was shared, replayed onto or attacked, and the exit code says so (with one line on stderr).
+inline int completed_exit_code(const char* role, const std::string& scene_name, const hil::LinkGuard& g) {
+  const std::uint64_t refused = g.counters().rejected();
+  if (refused == 0) return 0;
+  std::fprintf(stderr,
+               "gyrostab %s: %s: completed, but %llu frames on the link were not this session's or failed its "
+               "authentication (report.json link.session.refused); none was acted on\n",
+               role, scene_name.c_str(), static_cast<unsigned long long>(refused));
+  return kExitForeignFrames;
+}
 
 inline nlohmann::json link_timing_json(const LinkStats& s, const LinkSettings& settings) {
   nlohmann::json t{{"mode", settings.real_time ? "real_time" : "lockstep"},

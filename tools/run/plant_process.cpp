@@ -301,14 +301,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
                  describe_non_finite(loop.name, outcome.diverged_tick, outcome.diverged_state).c_str());
     return 3;
   }
-  if (const std::uint64_t refused = refused_by_guard(ep.guard()); refused > 0) {
-    std::fprintf(stderr,
-                 "gyrostab plant: %s: completed, but %llu frames on the link were not this session's or failed its "
-                 "authentication (report.json link.session.refused); none was acted on\n",
-                 loop.name.c_str(), static_cast<unsigned long long>(refused));
-    return kExitForeignFrames;
-  }
-  return 0;
+  return completed_exit_code("plant", loop.name, ep.guard());
 }
 
 }  // namespace
