@@ -62,6 +62,10 @@ namespace gyrostab::hil {
 template <>
 class FrameEndpoint<can::CanBusTransport> {
  public:
+  // The CAN frame map has no room for the link envelope yet: a CAN link binds no session and authenticates
+  // nothing (its frames keep their E2E CRC and alive counter); report.json says so.
+  static constexpr bool kEnvelopeOnTheWire = false;
+
   FrameEndpoint(can::CanBusTransport& bus, const GuardConfig& guard)
       : bus_(bus),
         guard_(guard),
@@ -228,6 +232,8 @@ class FrameEndpoint<can::CanBusTransport> {
       if (rx.accept(f) != can::FrameError::kNone || !rx.ready()) continue;
       rx.take(out);
       ++counters_.received;
+      // No envelope on the wire: the set stands for a peer of its own so that the handshake binds (the
+      // controller takes frames of tick > 0 only once bound), and nothing else is judged.
       last_rx_ = LinkEnvelope{1, guard_.session() != 0 ? guard_.session() : 1, 0, 0};
       if (sim_time_us != nullptr) *sim_time_us = static_cast<std::int64_t>(out.tick) * bus_.tick_ns / 1000;
       return RxStatus::kMessage;

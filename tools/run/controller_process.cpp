@@ -304,7 +304,7 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
   nlohmann::json l = link_info;
   l["role"] = "controller";
   l["counters"] = counters_json(ep.counters());
-  l["session"] = session_json(ep.guard());
+  l["session"] = session_json(ep);
   if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level
   l["missing_ticks"] = link.missing_ticks;
   l["safe_state_tick"] = link.safe_state_tick >= 0 ? nlohmann::json(link.safe_state_tick) : nlohmann::json();

@@ -46,7 +46,7 @@ inline nlohmann::json counters_json(const hil::LinkCounters& c) {
           {"resynced", c.resynced}};
 }
 
-// report.json link.session: who this end was, whom it bound to, and what the guard refused.
+// report.json link.session of a guard: who this end was, whom it bound to, and what the guard refused.
 inline nlohmann::json session_json(const hil::LinkGuard& g) {
   const hil::GuardCounters& c = g.counters();
   return {{"session", format_link_id(g.session())},
@@ -56,6 +56,21 @@ inline nlohmann::json session_json(const hil::LinkGuard& g) {
           {"refused",
            {{"recorded", c.recorded}, {"foreign", c.foreign}, {"bad_mac", c.bad_mac}, {"replayed", c.replayed}}}};
 }
+
+// report.json link.session: who this end was, whom it bound to, and what the guard refused; on a link whose
+// frames do not carry the envelope (CAN), only that.
+template <class Endpoint>
+nlohmann::json session_json(const Endpoint& ep) {
+  if constexpr (!Endpoint::kEnvelopeOnTheWire) {
+    return {{"on_the_wire", false}, {"note", "CAN frames do not carry the session envelope: nothing is bound or "
+                                             "authenticated on this link (docs/transport.md)"}};
+  } else {
+    nlohmann::json j = session_json(ep.guard());
+    j["on_the_wire"] = true;
+    return j;
+  }
+}
+
 
 // The exit code of a process whose loop completed: 0, or kExitForeignFrames when the link carried frames that
 // were not this session's or failed its authentication — the results stand (none was acted on), but the link

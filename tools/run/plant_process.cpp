@@ -242,7 +242,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   nlohmann::json l = link_info;
   l["role"] = "plant";
   l["counters"] = counters_json(ep.counters());
-  l["session"] = session_json(ep.guard());
+  l["session"] = session_json(ep);
   if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level
   l["actuator_limits"] = limits.from_scene
                              ? nlohmann::json{{"torque_Nm", {limits.torque_Nm[0], limits.torque_Nm[1]}},

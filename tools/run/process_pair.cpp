@@ -139,6 +139,11 @@ int run_process_pair(const RunRequest& req) {
   std::filesystem::remove(req.out_dir + "/report.json", ec);
   std::filesystem::remove(req.out_dir + "/controller/report.json", ec);
   std::fflush(nullptr);
+  if (!req.transport.key_file.empty() && req.transport.transport == "can") {
+    std::fprintf(stderr, "gyrostab run: --key-file: CAN frames do not carry the link envelope yet, so they cannot "
+                         "be authenticated (docs/transport.md); authenticate over LCM\n");
+    return 2;
+  }
   const std::uint64_t session = req.transport.session != 0 ? req.transport.session : hil::draw_link_id();
   if (session == 0) {
     std::fprintf(stderr, "gyrostab run: the OS's random source (getrandom) failed: cannot draw a session id\n");
