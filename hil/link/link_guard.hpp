@@ -126,6 +126,8 @@ class LinkGuard {
  private:
   GuardVerdict judge(const LinkEnvelope& e, std::span<const std::uint8_t> payload) {
     if (e.session == 0) return GuardVerdict::kRecorded;
+    // No live end has id 0: binding to it would bind nobody and leave the link open to every sender.
+    if (e.sender == 0) return GuardVerdict::kForeign;
     if (c_.session != 0 && e.session != c_.session) return GuardVerdict::kForeign;
     if (peer_ != 0 && e.sender != peer_) return GuardVerdict::kForeign;
     if (!c_.key) return GuardVerdict::kOk;

@@ -42,11 +42,13 @@ void feed(hil::FrameEndpoint<hil::MemoryTransport>& ep, hil::MemoryQueue& q, con
   const hil::LinkEnvelope& e = ep.last_envelope();
   if (e.session == 0) __builtin_trap();  // a recorded frame was accepted
   if (ep.guard().counters().rejected() != before) __builtin_trap();
+  if (e.sender == 0) __builtin_trap();  // no live end has id 0
   if (bound) {
     if (e.session != ep.guard().session() || e.sender != ep.guard().peer()) __builtin_trap();
   } else {
     ep.bind_to_last();
-    bound = true;
+    bound = ep.guard().bound();
+    if (!bound) __builtin_trap();  // a frame that passed must name a peer to bind to
   }
 }
 

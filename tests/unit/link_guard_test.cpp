@@ -124,6 +124,19 @@ TEST(LinkGuard, ARecordedFrameIsRefused) {
   EXPECT_EQ(p.plant.guard().counters().recorded, 1u);
 }
 
+TEST(LinkGuard, SenderZeroIsNobodyAndCannotBeBoundTo) {
+  Pair p;
+  // Found by link_guard_fuzz: a handshake command from sender 0 bound the plant to "nobody", which left it
+  // open to every sender of the session.
+  std::uint8_t buf[256];
+  const int n = hil::encode(command(0, 7.0), 0, buf, sizeof buf, hil::LinkEnvelope{0, kSession, 1, 0});
+  p.bus->to_plant.push(buf, n);
+  msg::ActuatorFrame a{};
+  EXPECT_EQ(p.plant.receive(Pair::now() + 20'000'000, a), hil::RxStatus::kTimeout);
+  EXPECT_EQ(p.plant.guard().counters().foreign, 1u);
+  EXPECT_FALSE(p.plant.guard().bound());
+}
+
 TEST(LinkGuard, WithAKeyAForgerWhoCopiesTheEnvelopeChangesNothing) {
   Pair p(key(1));
   p.handshake();
