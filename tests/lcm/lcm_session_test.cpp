@@ -149,7 +149,10 @@ TEST(LcmSession, WithAKeyAForgerOnTheBusChangesNoCommand) {
   expect_identical(ref, outputs_of(d / "lcm"), "a keyed run with a forger on its bus");
   const nlohmann::json r = read_json(d / "lcm/report.json");
   EXPECT_EQ(r["link"]["session"]["authenticated"], true);
-  EXPECT_GT(refused(r["link"], "bad_mac"), 1000u) << "every forgery fails its MAC";
+  // A forgery that reaches the plant before the genuine frame of its tick fails its MAC; one that comes after
+  // it carries a freshness value already used (refused as replayed). Which of the two depends on timing.
+  EXPECT_GT(refused(r["link"], "bad_mac") + refused(r["link"], "replayed"), 1000u) << "every forgery refused";
+  EXPECT_GT(refused(r["link"], "bad_mac"), 0u);
   EXPECT_EQ(r["link"]["counters"]["accepted"], 3000);
   EXPECT_EQ(e.code, 7) << "the run completed, and says that its link was attacked";
 }
