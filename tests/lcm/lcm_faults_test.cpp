@@ -220,12 +220,19 @@ TEST(LcmFaults, KillMinus9OfThePlantTakesTheControllerToItsSafeStateAndIsReporte
             std::string::npos);
 }
 
-TEST(LcmFaults, SigtermToTheRunParentStopsBothChildrenAndMergesTheirOutputs) {
-  TempDir d;
+// Starts the 900 s ship over LCM (`run` with its two children) and lets it run for `ms`.
+pid_t start_long_run(const TempDir& d, int ms, std::vector<pid_t>& children) {
   const pid_t p = spawn({gyrostab_bin(), "run", scene("ship-roll-damper-active.toml"), "--transport", "lcm",
                          "--out", d / "out"});
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  const std::vector<pid_t> children = children_matching(p, "gyrostab ");
+  std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+  children = children_matching(p, "gyrostab ");
+  return p;
+}
+
+TEST(LcmFaults, SigtermToTheRunParentStopsBothChildrenAndMergesTheirOutputs) {
+  TempDir d;
+  std::vector<pid_t> children;
+  const pid_t p = start_long_run(d, 1500, children);
   EXPECT_EQ(children.size(), 2u);
   kill(p, SIGTERM);
   const Exit e = wait_for(p);
@@ -246,10 +253,8 @@ TEST(LcmFaults, SigtermToTheRunParentStopsBothChildrenAndMergesTheirOutputs) {
 
 TEST(LcmFaults, KillingTheRunParentLeavesNoOrphans) {
   TempDir d;
-  const pid_t p = spawn({gyrostab_bin(), "run", scene("ship-roll-damper-active.toml"), "--transport", "lcm",
-                         "--out", d / "out"});
-  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
-  const std::vector<pid_t> children = children_matching(p, "gyrostab ");
+  std::vector<pid_t> children;
+  const pid_t p = start_long_run(d, 1000, children);
   ASSERT_EQ(children.size(), 2u);
   kill(p, SIGKILL);
   wait_for(p);
