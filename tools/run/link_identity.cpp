@@ -58,14 +58,15 @@ bool read_key_file(const std::string& path, firmware::link::Key128& key, std::st
   return true;
 }
 
+std::string key_file_problem(const TransportOptions& t) {
+  if (t.key_file.empty() || (t.can_if.empty() && t.transport != "can")) return "";
+  return "--key-file: CAN frames do not carry the link envelope yet, so they cannot be authenticated "
+         "(docs/transport.md); authenticate over LCM";
+}
+
 bool link_identity(const TransportOptions& t, bool plant_side, LinkIdentity& out, std::string& error) {
   out = LinkIdentity{};
-  if (!t.key_file.empty() && (!t.can_if.empty() || t.transport == "can")) {
-    // Accepting the key and then sending unauthenticated frames would be a silent downgrade.
-    error = "--key-file: CAN frames do not carry the link envelope yet, so they cannot be authenticated "
-            "(docs/transport.md); authenticate over LCM";
-    return false;
-  }
+  if (error = key_file_problem(t); !error.empty()) return false;
   if (!t.key_file.empty()) {
     firmware::link::Key128 key;
     if (!read_key_file(t.key_file, key, error)) return false;

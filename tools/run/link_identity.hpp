@@ -19,6 +19,10 @@ struct LinkIdentity {
   std::optional<firmware::link::Key128> key;
 };
 
+// "" or why the request's --key-file cannot be used on its link (CAN frames carry no envelope yet: accepting
+// the key and sending unauthenticated frames would be a silent downgrade).
+std::string key_file_problem(const TransportOptions& t);
+
 // false with `error` set: the OS random source failed, or the key file is refused.
 bool link_identity(const TransportOptions& t, bool plant_side, LinkIdentity& out, std::string& error);
 

@@ -130,6 +130,10 @@ bool read_json(const std::string& path, nlohmann::json& out) {
 int run_process_pair(const RunRequest& req) {
   const std::string suffix =
       req.transport.channel_suffix.empty() ? "_" + std::to_string(getpid()) : req.transport.channel_suffix;
+  if (const std::string why = key_file_problem(req.transport); !why.empty()) {
+    std::fprintf(stderr, "gyrostab run: %s\n", why.c_str());
+    return 2;
+  }
   std::string out_error;
   if (!check_output_dir(req.out_dir, out_error) || !check_output_dir(req.out_dir + "/controller", out_error)) {
     std::fprintf(stderr, "gyrostab run: %s\n", out_error.c_str());
@@ -139,11 +143,6 @@ int run_process_pair(const RunRequest& req) {
   std::filesystem::remove(req.out_dir + "/report.json", ec);
   std::filesystem::remove(req.out_dir + "/controller/report.json", ec);
   std::fflush(nullptr);
-  if (!req.transport.key_file.empty() && req.transport.transport == "can") {
-    std::fprintf(stderr, "gyrostab run: --key-file: CAN frames do not carry the link envelope yet, so they cannot "
-                         "be authenticated (docs/transport.md); authenticate over LCM\n");
-    return 2;
-  }
   const std::uint64_t session = req.transport.session != 0 ? req.transport.session : hil::draw_link_id();
   if (session == 0) {
     std::fprintf(stderr, "gyrostab run: the OS's random source (getrandom) failed: cannot draw a session id\n");
@@ -182,14 +181,16 @@ int run_process_pair(const RunRequest& req) {
       if (!plant.done) kill(plant.pid, forwarded);
       if (!controller.done) kill(controller.pid, forwarded);
     }
+    // Polled every 10 ms, never a blocking wait: a stop signal that lands between the check above and a
+    // blocking waitpid would otherwise wait for a child to end by itself.
     int status = 0;
-    const pid_t pid = waitpid(-1, &status, stop_other_at >= 0 ? WNOHANG : 0);
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
     if (pid < 0) {
       if (errno == EINTR) continue;
       break;
     }
     if (pid == 0) {
-      if (now_ms() >= stop_other_at) {
+      if (stop_other_at >= 0 && now_ms() >= stop_other_at) {
         kill(plant.done ? controller.pid : plant.pid, SIGTERM);
         stop_other_at = -1;
       } else {
