@@ -7,7 +7,7 @@
 #include "tests/support/model_matrix.hpp"
 
 namespace gyrostab {
-namespace {
+namespace dynamics_determinism_test {
 
 void nothing() {}
 
@@ -32,7 +32,7 @@ std::vector<unsigned char> run_in_child(const testing::Case& c, long ticks) {
   return out;
 }
 
-TEST(Determinism, EveryModelAndIntegratorIsBitIdenticalAcrossRunsAndProcesses) {
+TEST(ModelDeterminism, EveryModelAndIntegratorIsBitIdenticalAcrossRunsAndProcesses) {
   for (const auto& c : testing::all_cases()) {
     const long ticks = 20'000;
     const auto first = c.run(ticks, nothing);
@@ -44,5 +44,5 @@ TEST(Determinism, EveryModelAndIntegratorIsBitIdenticalAcrossRunsAndProcesses) {
   }
 }
 
-}  // namespace
+}  // namespace dynamics_determinism_test
 }  // namespace gyrostab

@@ -9,7 +9,7 @@
 #include "tests/support/shipped_scenes.hpp"
 
 namespace gyrostab {
-namespace {
+namespace lcm_memory_lockstep_test {
 
 TEST(LockstepDeterminism, PlantAndControllerThreadsReproduceTheInProcessRun) {
   const auto scenes = testing::shipped_scenes();
@@ -38,5 +38,5 @@ TEST(LockstepDeterminism, PlantAndControllerThreadsReproduceTheInProcessRun) {
   }
 }
 
-}  // namespace
+}  // namespace lcm_memory_lockstep_test
 }  // namespace gyrostab

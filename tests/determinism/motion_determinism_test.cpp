@@ -15,7 +15,7 @@
 #include "sim/sensors/rate_gyro.hpp"
 
 namespace gyrostab {
-namespace {
+namespace motion_determinism_test {
 
 std::vector<double> run_scene(std::uint64_t seed, int ticks) {
   random::SeededRng sea_rng(seed, 0), gyro_rng(seed, 1), accel_rng(seed, 2);
@@ -92,5 +92,5 @@ TEST(MotionDeterminism, StreamsOfOneSeedAreIndependentOfEachOthersUse) {
   for (int i = 0; i < 32; ++i) EXPECT_EQ(a.phase(i), b.phase(i));
 }
 
-}  // namespace
+}  // namespace motion_determinism_test
 }  // namespace gyrostab

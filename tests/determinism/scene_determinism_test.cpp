@@ -6,7 +6,7 @@
 #include "tools/commands.hpp"
 
 namespace gyrostab {
-namespace {
+namespace scene_determinism_test {
 
 struct Result {
   std::string csv;
@@ -28,7 +28,7 @@ Result run(const std::string& path, std::int64_t ticks) {
   return r;
 }
 
-TEST(Determinism, EveryShippedSceneIsBitIdenticalRunToRun) {
+TEST(SceneDeterminism, EveryShippedSceneIsBitIdenticalRunToRun) {
   for (const auto& path : testing::shipped_scenes()) {
     const Result a = run(path, 60'000), b = run(path, 60'000);
     EXPECT_FALSE(a.csv.empty());
@@ -37,5 +37,5 @@ TEST(Determinism, EveryShippedSceneIsBitIdenticalRunToRun) {
   }
 }
 
-}  // namespace
+}  // namespace scene_determinism_test
 }  // namespace gyrostab

@@ -22,7 +22,7 @@
 #include "sim/oracles/schuler_tuning.hpp"
 
 namespace gyrostab {
-namespace {
+namespace chelnokov_test {
 
 using dynamics::Quat;
 using dynamics::Vec3;
@@ -389,5 +389,5 @@ TEST(Chelnokov, KeplerFlightGivesTheHarmonicOscillator) {
   EXPECT_GT(perturbed, 1e-6);
 }
 
-}  // namespace
+}  // namespace chelnokov_test
 }  // namespace gyrostab

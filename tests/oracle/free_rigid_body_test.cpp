@@ -24,7 +24,7 @@
 #include "sim/oracles/euler_jacobi.hpp"
 
 namespace gyrostab {
-namespace {
+namespace free_rigid_body_test {
 
 using dynamics::Quat;
 using dynamics::Vec3;
@@ -474,5 +474,5 @@ TEST(MiddleAxisInstability, RotationAboutMaxAndMinAxesStaysNearTheAxisWhileMiddl
   EXPECT_GT(angle_range_from_axis<dynamics::Rk4>({0.01, 10.0, 0.01}, 1, h, duration).max, kPi - 0.01);
 }
 
-}  // namespace
+}  // namespace free_rigid_body_test
 }  // namespace gyrostab

@@ -20,7 +20,7 @@
 #include "sim/models/gimbal_gyro.hpp"
 
 namespace gyrostab {
-namespace {
+namespace gimbal_drive_test {
 
 using drives::AxisLoad;
 using drives::DcTorqueMotor;
@@ -584,5 +584,5 @@ TEST(GimbalDrive, TorqueModeRegulatesTheCurrentToTheCommand) {
   EXPECT_NEAR(rig.drive.gear_torque(), 2.0, 1e-12);
 }
 
-}  // namespace
+}  // namespace gimbal_drive_test
 }  // namespace gyrostab

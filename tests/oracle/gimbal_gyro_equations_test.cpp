@@ -17,7 +17,7 @@
 #include "sim/models/gimbal_gyro.hpp"
 
 namespace gyrostab {
-namespace {
+namespace gimbal_gyro_equations_test {
 
 // One reference vector; field order is the generator's (see the header of the .inc file).
 struct LagrangeVector {
@@ -206,5 +206,5 @@ TEST(GimbalGyroEquations, RotorTorqueReactsOnOuterGimbalAsMinusM3SinBetaOverI) {
   EXPECT_EQ(dx1[4], M3);
 }
 
-}  // namespace
+}  // namespace gimbal_gyro_equations_test
 }  // namespace gyrostab

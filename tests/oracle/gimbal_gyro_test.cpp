@@ -19,7 +19,7 @@
 #include "sim/oracles/gyro_pendulum_quartic.hpp"
 
 namespace gyrostab {
-namespace {
+namespace gimbal_gyro_test {
 
 using dynamics::Vec3;
 using Gyro = models::GimbalGyro<models::FixedBase>;
@@ -429,5 +429,5 @@ TEST(GimbalGyroOracle, InvariantsOfTheHeavyGyroInGimbalsPerIntegrator) {
   EXPECT_LT(m_rk4, 3e-11);
 }
 
-}  // namespace
+}  // namespace gimbal_gyro_test
 }  // namespace gyrostab

@@ -20,7 +20,7 @@
 #include "sim/oracles/schuler_tuning.hpp"
 
 namespace gyrostab {
-namespace {
+namespace gyro_pendulum_cross_test {
 
 using dynamics::Quat;
 using dynamics::Vec3;
@@ -188,5 +188,5 @@ TEST(GyroPendulumCross, TunedGyroPendulumMagnusAndSpinningBodyAgree) {
   EXPECT_LT(turning.gap, 1e-2 * turning.z_max);
 }
 
-}  // namespace
+}  // namespace gyro_pendulum_cross_test
 }  // namespace gyrostab

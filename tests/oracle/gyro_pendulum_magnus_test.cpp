@@ -22,7 +22,7 @@
 #include "sim/oracles/schuler_tuning.hpp"
 
 namespace gyrostab {
-namespace {
+namespace gyro_pendulum_magnus_test {
 
 using C = std::complex<double>;
 using Vehicle = motion::EarthVehicle<8>;
@@ -173,5 +173,5 @@ TEST(GyroPendulumMagnus, PhysicalPendulumPeriodIs1260) {
   }
 }
 
-}  // namespace
+}  // namespace gyro_pendulum_magnus_test
 }  // namespace gyrostab

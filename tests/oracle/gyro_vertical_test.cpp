@@ -25,7 +25,7 @@
 #include "sim/dynamics/rk4.hpp"
 
 namespace gyrostab {
-namespace {
+namespace gyro_vertical_test {
 
 using C = std::complex<double>;
 using models::GyroVertical;
@@ -341,5 +341,5 @@ TEST(GyroVerticalOracle, FullFormSettlesOnThePrecessionEquilibrium) {
   EXPECT_NEAR(x[1], zg.imag(), 2e-5);
 }
 
-}  // namespace
+}  // namespace gyro_vertical_test
 }  // namespace gyrostab

@@ -27,7 +27,7 @@
 #include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab {
-namespace {
+namespace gyrocompass_test {
 
 using models::Gyrocompass;
 using models::GyrocompassParams;
@@ -349,5 +349,5 @@ TEST(GyrocompassOracle, RollingErrorOnIntercardinalCourses13_38) {
   EXPECT_LT(std::fabs(mean0 - a0), 0.2 * 0.0346);
 }
 
-}  // namespace
+}  // namespace gyrocompass_test
 }  // namespace gyrostab

@@ -27,7 +27,7 @@
 #include "sim/oracles/lagrange_top.hpp"
 
 namespace gyrostab {
-namespace {
+namespace heavy_symmetric_top_test {
 
 using dynamics::Quat;
 using dynamics::Vec3;
@@ -515,5 +515,5 @@ TEST(HeavySymmetricTopInvariants, EnergyVerticalMomentumAndSpinPerIntegrator) {
   }
 }
 
-}  // namespace
+}  // namespace heavy_symmetric_top_test
 }  // namespace gyrostab

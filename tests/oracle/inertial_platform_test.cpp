@@ -32,7 +32,7 @@
 #include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab {
-namespace {
+namespace inertial_platform_test {
 
 using models::PlatformAxisParams;
 using models::SingleAxisPlatform;
@@ -323,5 +323,5 @@ TEST(InertialPlatformOracle, ThreeAxisSchulerPeriodOnTheLevelChannels) {
   EXPECT_LE(r.tilt_max, 1.02e-4);
 }
 
-}  // namespace
+}  // namespace inertial_platform_test
 }  // namespace gyrostab

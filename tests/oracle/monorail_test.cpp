@@ -28,7 +28,7 @@
 #include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab {
-namespace {
+namespace monorail_test {
 
 using models::Monorail;
 using models::MonorailParams;
@@ -285,5 +285,5 @@ TEST(MonorailModel, StepsWithoutHeapAllocation) {
   EXPECT_EQ(allocations.count(), 0u);  // exact: any allocation is a defect
 }
 
-}  // namespace
+}  // namespace monorail_test
 }  // namespace gyrostab

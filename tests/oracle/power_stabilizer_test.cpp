@@ -41,7 +41,7 @@
 #include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab {
-namespace {
+namespace power_stabilizer_test {
 
 using cd = std::complex<double>;
 using firmware::GainCheckVerdict;
@@ -755,5 +755,5 @@ TEST(PowerStabilizerLoopsUnit, ComputeIsPureAndAllocationFree) {
   EXPECT_TRUE(std::isfinite(sum));
 }
 
-}  // namespace
+}  // namespace power_stabilizer_test
 }  // namespace gyrostab

@@ -19,7 +19,7 @@
 #include "sim/analysis/zero_crossing_meter.hpp"
 
 namespace gyrostab {
-namespace {
+namespace rate_integrating_gyro_test {
 
 using sensors::GyroCaseMotion;
 using sensors::SingleAxisGyro;
@@ -174,5 +174,5 @@ TEST(RateGyroOracle, DoubleIntegratingGyro15_19) {
   EXPECT_NEAR(g.indicated(), W * 0.5, 1e-15);
 }
 
-}  // namespace
+}  // namespace rate_integrating_gyro_test
 }  // namespace gyrostab

@@ -18,7 +18,7 @@
 #include "sim/oracles/schuler_tuning.hpp"
 
 namespace gyrostab {
-namespace {
+namespace schuler_pendulum_test {
 
 using dynamics::Vec3;
 using Vehicle = motion::EarthVehicle<16>;
@@ -178,5 +178,5 @@ TEST(SchulerPendulum, PeriodDependsOnShapeAsMagnus1260) {
   EXPECT_NEAR(tilt / (1e-6 / lambda * std::sinh(lambda * t_unstable)), 1.0, 1e-3);
 }
 
-}  // namespace
+}  // namespace schuler_pendulum_test
 }  // namespace gyrostab

@@ -21,7 +21,7 @@
 #include "tests/support/alloc_counter.hpp"
 
 namespace gyrostab {
-namespace {
+namespace servo_gyro_test {
 
 using models::ServoGyro;
 using models::ServoGyroParams;
@@ -158,5 +158,5 @@ TEST(ServoGyroModel, StepsWithoutHeapAllocation) {
   }
 }
 
-}  // namespace
+}  // namespace servo_gyro_test
 }  // namespace gyrostab

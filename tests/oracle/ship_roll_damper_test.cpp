@@ -24,7 +24,7 @@
 #include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab {
-namespace {
+namespace ship_roll_damper_test {
 
 using models::ShipRollDamper;
 using models::ShipRollDamperParams;
@@ -462,5 +462,5 @@ TEST(ShipRollDamperModel, StepsWithoutHeapAllocation) {
   }
 }
 
-}  // namespace
+}  // namespace ship_roll_damper_test
 }  // namespace gyrostab

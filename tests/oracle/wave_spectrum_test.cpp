@@ -12,7 +12,7 @@
 #include "sim/motion/irregular_sea.hpp"
 
 namespace gyrostab {
-namespace {
+namespace wave_spectrum_test {
 
 using motion::WaveSpectrum;
 using motion::WaveSpectrumParams;
@@ -184,5 +184,5 @@ TEST(IrregularSea, SampleVarianceOverThreeHoursMatchesM0) {
   }
 }
 
-}  // namespace
+}  // namespace wave_spectrum_test
 }  // namespace gyrostab

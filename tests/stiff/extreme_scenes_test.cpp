@@ -13,7 +13,7 @@
 #include "tools/commands.hpp"
 
 namespace gyrostab {
-namespace {
+namespace extreme_scenes_test {
 
 const std::string kDir = GYROSTAB_SOURCE_DIR "/sim/scenes/extreme/";
 
@@ -338,5 +338,5 @@ TEST(ExtremeLongRun, ThreeHoursAtOneKilohertzWithBoundedDrift) {
   expect_error_estimate(o);
 }
 
-}  // namespace
+}  // namespace extreme_scenes_test
 }  // namespace gyrostab

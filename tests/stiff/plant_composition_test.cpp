@@ -18,7 +18,7 @@
 #include "tools/commands.hpp"
 
 namespace gyrostab {
-namespace {
+namespace plant_composition_test {
 
 using models::BackEmfMotor, models::ElasticPlatform, models::FixedBase, models::FullGimbal,
     models::HarmonicBaseRotation, models::PrecessionOnly, models::RigidStructure, models::TorqueMotors;
@@ -181,5 +181,5 @@ TEST(PlantComposition, BaseWithoutRollIsTheBaseAtRest) {
   }
 }
 
-}  // namespace
+}  // namespace plant_composition_test
 }  // namespace gyrostab

@@ -18,7 +18,7 @@
 #include "tools/commands.hpp"
 
 namespace gyrostab::tools::accuracy {
-namespace {
+namespace accuracy_scene_test {
 
 const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
 
@@ -107,7 +107,7 @@ nlohmann::json run_report(const std::string& scene, std::int64_t ticks) {
   return report;
 }
 
-TEST(RunErrorEstimate, RunReportsCarryADeterministicHalfStepEstimate) {
+TEST(SceneRunErrorEstimate, RunReportsCarryADeterministicHalfStepEstimate) {
   // Power stabilizer: the window is 1 s from the first disturbance step (1 s).
   const nlohmann::json a = run_report("power-stabilizer.toml", 2500);
   const nlohmann::json& e = a["error_estimate"];
@@ -131,7 +131,7 @@ TEST(RunErrorEstimate, RunReportsCarryADeterministicHalfStepEstimate) {
 
 // The half-step window on the oscillator: RK4's error over the window, from the saved state, is known in
 // closed form (OscillatorProblem::exact); Richardson's (x_h − x_{h/2})·16/15 estimates it to O(ωh) relative.
-TEST(RunErrorEstimate, HalfStepWindowEstimatesTheWindowErrorOfRk4) {
+TEST(SceneRunErrorEstimate, HalfStepWindowEstimatesTheWindowErrorOfRk4) {
   const double omega = 40.0;
   const std::int64_t tick_ns = 5'000'000;  // ωh = 0.2
   OscillatorModel model;
@@ -167,5 +167,5 @@ TEST(RunErrorEstimate, HalfStepWindowEstimatesTheWindowErrorOfRk4) {
   EXPECT_GT(worst, 1e-6);
 }
 
-}  // namespace
+}  // namespace accuracy_scene_test
 }  // namespace gyrostab::tools::accuracy

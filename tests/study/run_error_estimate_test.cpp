@@ -12,7 +12,7 @@
 #include "tools/commands.hpp"
 
 namespace gyrostab::tools {
-namespace {
+namespace run_error_estimate_test {
 
 TEST(RunErrorEstimate, EveryShippedSceneReportsOneOrSaysWhyNot) {
   int estimated = 0;
@@ -45,5 +45,5 @@ TEST(RunErrorEstimate, EveryShippedSceneReportsOneOrSaysWhyNot) {
   EXPECT_GE(estimated, 12);
 }
 
-}  // namespace
+}  // namespace run_error_estimate_test
 }  // namespace gyrostab::tools

@@ -12,7 +12,7 @@
 #include "tools/accuracy/oscillator_problem.hpp"
 
 namespace gyrostab::tools::accuracy {
-namespace {
+namespace study_oracle_test {
 
 using State = OscillatorProblem::State;
 
@@ -160,5 +160,5 @@ TEST(AccuracyStudy, PeersIntegrateAnOscillatorWithTickHeldForcingToTheirToleranc
   }
 }
 
-}  // namespace
+}  // namespace study_oracle_test
 }  // namespace gyrostab::tools::accuracy

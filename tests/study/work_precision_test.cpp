@@ -8,7 +8,7 @@
 #include "tools/accuracy/work_precision.hpp"
 
 namespace gyrostab::tools::accuracy {
-namespace {
+namespace work_precision_test {
 
 RunResult run(const char* method, Family f, double wall_s, double error) {
   RunResult r;
@@ -77,5 +77,5 @@ TEST(WorkPrecision, SpeedUpComparesTheBestOfEachFamilyAtEqualError) {
   EXPECT_EQ(rank[4], 1);
 }
 
-}  // namespace
+}  // namespace work_precision_test
 }  // namespace gyrostab::tools::accuracy

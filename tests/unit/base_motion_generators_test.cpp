@@ -12,7 +12,7 @@
 #include "sim/motion/regular_wave_moment.hpp"
 
 namespace gyrostab {
-namespace {
+namespace base_motion_generators_test {
 
 using dynamics::Quat;
 using dynamics::Vec3;
@@ -207,5 +207,5 @@ TEST(MotionParameters, ImpossibleSeaParametersAreRefusedWithAMessage) {
   EXPECT_NEAR(WaveSpectrum::dnv_gamma(4.0, 8.4), std::exp(5.75 - 1.15 * 4.2), 1e-12);
 }
 
-}  // namespace
+}  // namespace base_motion_generators_test
 }  // namespace gyrostab

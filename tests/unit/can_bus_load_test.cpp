@@ -9,7 +9,7 @@
 #include "hil/can/bus_load.hpp"
 
 namespace gyrostab::can {
-namespace {
+namespace can_bus_load_test {
 
 TEST(CanBusLoad, ClassicWorstCaseMatchesDavisEtAl) {
   for (std::size_t n = 0; n <= 8; ++n) {
@@ -65,5 +65,5 @@ TEST(CanBusLoad, LoadScalesWithTickRateAndDataBitRate) {
   EXPECT_LT(bus_load(kAllNodes, 1000.0, BusTiming{1e6, 8e6}).load, b.load);
 }
 
-}  // namespace
+}  // namespace can_bus_load_test
 }  // namespace gyrostab::can

@@ -13,7 +13,7 @@
 #include "hil/can/candump_log.hpp"
 
 namespace gyrostab::can {
-namespace {
+namespace can_candump_test {
 
 std::string format(const CanFrame& f, std::int64_t t_ns, std::string_view ifname = "vcan0") {
   char buf[kMaxCandumpLine];
@@ -160,5 +160,5 @@ TEST(CanCandump, AnLcmLogIsNotACandumpLog) {
   fs::remove(path);
 }
 
-}  // namespace
+}  // namespace can_candump_test
 }  // namespace gyrostab::can

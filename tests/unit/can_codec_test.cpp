@@ -13,7 +13,7 @@
 #include "sim/random/seeded_rng.hpp"
 
 namespace gyrostab::can {
-namespace {
+namespace can_codec_test {
 
 using msg::ActuatorFrame;
 using msg::SensorFrame;
@@ -269,5 +269,5 @@ TEST_F(CanBadFrames, FramesOfASkippedTickAreLateButTheLastTakenTickMayRepeat) {
   EXPECT_EQ(out.tick, 3u);
 }
 
-}  // namespace
+}  // namespace can_codec_test
 }  // namespace gyrostab::can

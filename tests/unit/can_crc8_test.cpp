@@ -10,7 +10,7 @@
 #include "hil/can/frame_codec.hpp"
 
 namespace gyrostab::can {
-namespace {
+namespace can_crc8_test {
 
 std::uint8_t crc(const std::vector<std::uint8_t>& v) {
   return crc8_sae_j1850(v.data(), v.size());
@@ -46,5 +46,5 @@ TEST(CanCrc8, FrameCrcCoversTheIdentifier) {
   EXPECT_NE(frame_crc(0x1A0, data, 8), frame_crc(0x190, data, 8));
 }
 
-}  // namespace
+}  // namespace can_crc8_test
 }  // namespace gyrostab::can

@@ -25,7 +25,7 @@
 #include "hil/can/frame_map.hpp"
 
 namespace gyrostab::can {
-namespace {
+namespace can_dbc_test {
 
 struct DbcSignal {
   int start{-1}, length{-1};
@@ -233,5 +233,5 @@ TEST(CanDbc, CanmatrixDecodesEncoderOutputExactly) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace can_dbc_test
 }  // namespace gyrostab::can

@@ -12,7 +12,7 @@
 #include "hil/can/frame_map.hpp"
 
 namespace gyrostab::can {
-namespace {
+namespace can_frame_map_test {
 
 TEST(CanFrameMap, IdentifiersAreUniqueStandardIds) {
   std::set<std::uint32_t> ids;
@@ -137,5 +137,5 @@ TEST(CanFrameMap, MessageMasksFollowTheNodes) {
   EXPECT_EQ(message_mask(Direction::kSensor, 0) & message_mask(Direction::kActuator, kAllNodes), 0u);
 }
 
-}  // namespace
+}  // namespace can_frame_map_test
 }  // namespace gyrostab::can

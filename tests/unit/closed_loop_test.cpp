@@ -10,7 +10,7 @@
 #include <vector>
 
 namespace gyrostab {
-namespace {
+namespace closed_loop_test {
 
 // The controller echoes the sensor frame's tick in its torque; the plant logs what it is given each tick.
 struct EchoController {
@@ -74,5 +74,5 @@ TEST(ClosedLoop, StopsAtTheFirstNonFiniteStateAndSaysWhere) {
   EXPECT_EQ(out.ticks_run, 7);
 }
 
-}  // namespace
+}  // namespace closed_loop_test
 }  // namespace gyrostab

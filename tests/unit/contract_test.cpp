@@ -15,7 +15,7 @@
 #include "firmware/msg/sensor_frame.hpp"
 
 namespace gyrostab::msg {
-namespace {
+namespace contract_test {
 
 template <class T>
 bool all_bytes_zero(const T& value) {
@@ -205,5 +205,5 @@ TEST(Contract, AxisIndicesFollowTheBook) {
   EXPECT_EQ(std::size(ActuatorFrame{}.gimbal_torque_Nm), kGimbalAxes);
 }
 
-}  // namespace
+}  // namespace contract_test
 }  // namespace gyrostab::msg

@@ -17,7 +17,7 @@
 #include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab::firmware {
-namespace {
+namespace control_laws_test {
 
 constexpr double kT = 1e-3;  // control period of every test [s]
 
@@ -482,5 +482,5 @@ TEST(ServoGyro, CheckRefusesARateGainTooStiffForThePeriod) {
   EXPECT_DOUBLE_EQ(c.upper, 0.5 * p.B / kT);
 }
 
-}  // namespace
+}  // namespace control_laws_test
 }  // namespace gyrostab::firmware

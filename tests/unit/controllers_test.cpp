@@ -21,7 +21,7 @@
 #include "tests/support/alloc_counter.hpp"
 
 namespace gyrostab::firmware {
-namespace {
+namespace controllers_test {
 
 using msg::ActuatorFrame;
 using msg::FaultBit;
@@ -410,5 +410,5 @@ TEST(ControllerRuntime, ServoGyroTorqueDemandBecomesARateReference) {
   EXPECT_NEAR(out.gimbal_torque_Nm[msg::kAxis2], M2, 1e-12);
 }
 
-}  // namespace
+}  // namespace controllers_test
 }  // namespace gyrostab::firmware

@@ -12,7 +12,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 namespace gyrostab {
-namespace {
+namespace damped_gyroscopic_flow_test {
 
 Eigen::Matrix<double, 4, 1> reference(const dynamics::GyroscopicPair& k, double tau, double r0, double r1,
                                       const Eigen::Matrix<double, 4, 1>& x) {
@@ -94,5 +94,5 @@ TEST(DampedGyroscopicFlow, Phi2SeriesIsAtRoundOff) {
   EXPECT_LT(worst_imag, 2e-15);
 }
 
-}  // namespace
+}  // namespace damped_gyroscopic_flow_test
 }  // namespace gyrostab

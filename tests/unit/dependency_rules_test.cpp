@@ -14,7 +14,7 @@
 #include <vector>
 
 namespace gyrostab {
-namespace {
+namespace dependency_rules_test {
 
 namespace fs = std::filesystem;
 const fs::path kRoot = GYROSTAB_SOURCE_DIR;
@@ -138,5 +138,5 @@ TEST(DependencyRules, TheProjectStandsAlone) {
   EXPECT_TRUE(issues.empty()) << issues.size() << " places cite an issue number, first " << issues.front();
 }
 
-}  // namespace
+}  // namespace dependency_rules_test
 }  // namespace gyrostab

@@ -16,7 +16,7 @@
 #include "sim/drives/gimbal_drive.hpp"
 
 namespace gyrostab {
-namespace {
+namespace drive_loops_test {
 
 using firmware::AntiWindup;
 using firmware::PiCoefficients;
@@ -314,5 +314,5 @@ TEST(EncoderCountDelta, IsExactAcrossTheWrap) {
   EXPECT_EQ(firmware::encoder_count_delta(0, -1), 1);
 }
 
-}  // namespace
+}  // namespace drive_loops_test
 }  // namespace gyrostab

@@ -12,7 +12,7 @@
 #include <numbers>
 
 namespace gyrostab {
-namespace {
+namespace earth_vehicle_test {
 
 using dynamics::Quat;
 using dynamics::Vec3;
@@ -231,5 +231,5 @@ TEST(EarthVehicle, DarbouxUndefinedWhenAbsoluteVelocityVanishes) {
   EXPECT_TRUE(veh.sample(0.0).azimuth_free.w_IZ_Z.allFinite());
 }
 
-}  // namespace
+}  // namespace earth_vehicle_test
 }  // namespace gyrostab

@@ -16,7 +16,7 @@
 #include "tests/support/alloc_counter.hpp"
 
 namespace gyrostab::firmware {
-namespace {
+namespace fault_monitor_test {
 
 using msg::ActuatorFrame;
 using msg::bit;
@@ -574,5 +574,5 @@ TEST(FaultMonitor, CheckAndApplyAllocateNothing) {
   EXPECT_EQ(m.state(), MonitorState::kNormal);
 }
 
-}  // namespace
+}  // namespace fault_monitor_test
 }  // namespace gyrostab::firmware

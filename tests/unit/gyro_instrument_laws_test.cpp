@@ -20,7 +20,7 @@
 #include "tests/support/alloc_counter.hpp"
 
 namespace gyrostab::firmware {
-namespace {
+namespace gyro_instrument_laws_test {
 
 constexpr double kPi = std::numbers::pi;
 
@@ -289,5 +289,5 @@ TEST(GyroInstrumentControllers, NoHeapOverAMillionSteps) {
   EXPECT_EQ(testing::allocations_so_far() - before, 0u);
 }
 
-}  // namespace
+}  // namespace gyro_instrument_laws_test
 }  // namespace gyrostab::firmware

@@ -7,7 +7,7 @@
 #include "firmware/msg/fault_bits.hpp"
 
 namespace gyrostab {
-namespace {
+namespace gyro_pendulum_controller_test {
 
 msg::SensorFrame frame(std::uint64_t tick) {
   msg::SensorFrame f;
@@ -59,5 +59,5 @@ TEST(GyroPendulumController, RefusesANonPositiveTick) {
   EXPECT_FALSE(ctl.armed());
 }
 
-}  // namespace
+}  // namespace gyro_pendulum_controller_test
 }  // namespace gyrostab

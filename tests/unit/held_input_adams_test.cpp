@@ -14,7 +14,7 @@
 
 #include "sim/dynamics/rk4.hpp"
 
-namespace {
+namespace held_input_adams_test {
 
 using gyrostab::dynamics::HeldInputAdams4;
 using gyrostab::dynamics::Rk4;
@@ -181,4 +181,4 @@ TEST(HeldInputAdams4, RestartsWhenTheStateOrStepIsNotItsContinuation) {
   EXPECT_EQ(ab.history(), 1);
 }
 
-}  // namespace
+}  // namespace held_input_adams_test

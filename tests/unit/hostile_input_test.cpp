@@ -15,7 +15,7 @@
 #include "tools/scene/toml_limits.hpp"
 
 namespace gyrostab {
-namespace {
+namespace hostile_input_test {
 
 namespace fs = std::filesystem;
 
@@ -200,5 +200,5 @@ TEST(OutputDir, ARunReplacesTheWholeSetOfOutputs) {
   EXPECT_FALSE(fs::exists(out + "/signals.png")) << "an older run's figure left beside this run's report";
 }
 
-}  // namespace
+}  // namespace hostile_input_test
 }  // namespace gyrostab

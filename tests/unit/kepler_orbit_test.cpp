@@ -8,7 +8,7 @@
 #include <cmath>
 
 namespace gyrostab {
-namespace {
+namespace kepler_orbit_test {
 
 using dynamics::Quat;
 using dynamics::Vec3;
@@ -62,5 +62,5 @@ TEST(KeplerOrbit, RefusesNonElliptic) {
   EXPECT_TRUE(clamped.sample(3.0).p_I.allFinite());
 }
 
-}  // namespace
+}  // namespace kepler_orbit_test
 }  // namespace gyrostab

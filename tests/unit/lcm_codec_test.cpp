@@ -18,7 +18,7 @@
 #include "tests/support/alloc_counter.hpp"
 
 namespace gyrostab::hil {
-namespace {
+namespace lcm_codec_test {
 
 // A quiet NaN with a payload (and the sign bit set) and a signalling NaN: a codec that went through a float
 // conversion or an arithmetic copy would canonicalise them.
@@ -235,5 +235,5 @@ TEST(LcmCodec, EncodeAndDecodeDoNotAllocate) {
   EXPECT_EQ(ok, 6000);
 }
 
-}  // namespace
+}  // namespace lcm_codec_test
 }  // namespace gyrostab::hil

@@ -21,7 +21,7 @@
 #include "tools/run/command_wait.hpp"
 
 namespace gyrostab {
-namespace {
+namespace lcm_link_test {
 
 constexpr std::uint64_t kSession = 0x2468ace0;
 constexpr std::uint64_t kControllerId = 0x13579bdf;
@@ -259,5 +259,5 @@ TEST(LinkCli, ParsesFaultWindowsAndJitter) {
     EXPECT_NE(tools::parse_jitter(bad, t), "") << bad;
 }
 
-}  // namespace
+}  // namespace lcm_link_test
 }  // namespace gyrostab

@@ -15,7 +15,7 @@
 #include "hil/link/memory_bus.hpp"
 
 namespace gyrostab {
-namespace {
+namespace link_guard_test {
 
 constexpr std::uint64_t kSession = 0x1234abcd;
 constexpr std::uint64_t kControllerId = 0x0badf00d;
@@ -190,7 +190,7 @@ TEST(LinkGuard, AFrameUnderAnotherKeyIsRefusedBeforeTheHandshake) {
   EXPECT_EQ(p.controller.guard().session(), kSession);
 }
 
-TEST(FrameOrder, ASequenceJumpCannotLockTheGenuinePeerOut) {
+TEST(FrameOrderJump, ASequenceJumpCannotLockTheGenuinePeerOut) {
   hil::FrameOrder o;
   o.accept(10, 10);
   // A frame of the right tick whose sequence leaps 2^30 ahead: accepted, every genuine frame after it would
@@ -204,5 +204,5 @@ TEST(FrameOrder, ASequenceJumpCannotLockTheGenuinePeerOut) {
   EXPECT_EQ(o.classify(15, 11 + 4 + hil::kSequenceSlack + 1, 15), hil::OrderVerdict::kJump);
 }
 
-}  // namespace
+}  // namespace link_guard_test
 }  // namespace gyrostab

@@ -11,7 +11,7 @@
 #include "tools/run/recorder.hpp"
 
 namespace gyrostab {
-namespace {
+namespace output_signals_test {
 
 TEST(OutputSignals, RecorderKeepsTheSelectedColumnsInTheirOrder) {
   tools::Recorder all({"a", "b", "c"}, 4, 1);
@@ -76,10 +76,10 @@ TEST(OutputSignals, SceneRecordsOnlyWhatItNames) {
       << problems[0];
   EXPECT_NE(problems[0].find("valid: alpha_rad, beta_rad"), std::string::npos) << problems[0];
   req.scene_text = bad;
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   EXPECT_EQ(tools::run_scene(req), 2);
-  testing::internal::GetCapturedStderr();
+  ::testing::internal::GetCapturedStderr();
 }
 
-}  // namespace
+}  // namespace output_signals_test
 }  // namespace gyrostab

@@ -11,7 +11,7 @@
 #include "tools/scene/scene_keys.hpp"
 
 namespace gyrostab {
-namespace {
+namespace scene_docs_test {
 
 TEST(SceneDocs, CommittedScenesMdIsWhatTheSchemasGenerate) {
   std::ifstream f(GYROSTAB_SOURCE_DIR "/docs/scenes.md", std::ios::binary);
@@ -45,5 +45,5 @@ TEST(SceneDocs, EveryRegisteredDeviceHasASectionWithItsKeys) {
   }
 }
 
-}  // namespace
+}  // namespace scene_docs_test
 }  // namespace gyrostab

@@ -6,7 +6,7 @@
 #include "tools/commands.hpp"
 
 namespace gyrostab {
-namespace {
+namespace scene_reader_test {
 
 using tools::Range;
 using tools::SceneReader;
@@ -122,5 +122,5 @@ TEST(SceneCheck, ShippedScenesPassAndBrokenOnesAreRefused) {
   EXPECT_EQ(tools::run_scene(req), 2);
 }
 
-}  // namespace
+}  // namespace scene_reader_test
 }  // namespace gyrostab

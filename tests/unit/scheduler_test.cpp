@@ -16,7 +16,7 @@
 #include "tests/support/alloc_counter.hpp"
 
 namespace gyrostab::firmware {
-namespace {
+namespace scheduler_test {
 
 // A clock the test (and the tasks) move by hand [ns].
 struct FakeClock {
@@ -279,5 +279,5 @@ TEST(Scheduler, RunTickAllocatesNothing) {
   EXPECT_EQ(s.counters(1).runs, 10'000u);
 }
 
-}  // namespace
+}  // namespace scheduler_test
 }  // namespace gyrostab::firmware

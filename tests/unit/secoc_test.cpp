@@ -19,7 +19,7 @@
 #include "sim/random/seeded_rng.hpp"
 
 namespace gyrostab::firmware::link {
-namespace {
+namespace secoc_test {
 
 constexpr std::uint32_t kDataId = 0x1A0;
 constexpr std::uint64_t kSession = 0x5E55'1D00'C0FF'EE01ULL;
@@ -419,5 +419,5 @@ TEST(SecOc, ExhaustedCounterNeverRepeatsAnAcceptedValue) {
   EXPECT_EQ(rx1.latest_accepted(), kMax);
 }
 
-}  // namespace
+}  // namespace secoc_test
 }  // namespace gyrostab::firmware::link

@@ -8,7 +8,7 @@
 #include <cstdint>
 
 namespace gyrostab {
-namespace {
+namespace seeded_rng_test {
 
 using random::SeededRng;
 
@@ -84,5 +84,5 @@ TEST(SeededRng, GaussianHasTheMomentsAndTailOfAStandardNormal) {
   EXPECT_NEAR(static_cast<double>(beyond3) / n, p, 5 * std::sqrt(p * (1 - p) / n));
 }
 
-}  // namespace
+}  // namespace seeded_rng_test
 }  // namespace gyrostab

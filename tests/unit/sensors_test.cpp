@@ -13,7 +13,7 @@
 #include "sim/sensors/rate_gyro.hpp"
 
 namespace gyrostab {
-namespace {
+namespace sensors_test {
 
 using sensors::Encoder;
 using sensors::EncoderParams;
@@ -287,5 +287,5 @@ TEST(Accelerometer, ReadsGravityAlongItsAxisAtRestPlusBias) {
   EXPECT_NEAR(a.measure(at_rest, rng), 9.80665 / std::sqrt(2.0) + 0.05, 1e-14);
 }
 
-}  // namespace
+}  // namespace sensors_test
 }  // namespace gyrostab

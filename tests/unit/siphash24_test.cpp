@@ -23,7 +23,7 @@
 #include "sim/random/seeded_rng.hpp"
 
 namespace gyrostab::firmware::link {
-namespace {
+namespace siphash24_test {
 
 constexpr std::array<std::uint64_t, 64> kReferenceVectors = {
     0x726fdb47dd0e0e31ULL, 0x74f839c593dc67fdULL, 0x0d6c8009d9a94f5aULL, 0x85676696d7fb7e2dULL,  // n = 0..3
@@ -159,5 +159,5 @@ TEST(SipHash24, FinishDoesNotDisturbTheState) {
   EXPECT_EQ(h.finish(), kReferenceVectors[63]);
 }
 
-}  // namespace
+}  // namespace siphash24_test
 }  // namespace gyrostab::firmware::link

@@ -12,7 +12,7 @@
 #include <string>
 
 namespace gyrostab {
-namespace {
+namespace state_guard_test {
 
 struct NullController {
   void step(std::uint64_t, const msg::SensorFrame*, msg::ActuatorFrame& out) { out = msg::ActuatorFrame{}; }
@@ -87,5 +87,5 @@ TEST(StateGuard, ADeviceThatDoesNotNameItsStateStillStopsAtTheTick) {
   EXPECT_EQ(tools::describe_non_finite("s", 3, out.diverged_state), "s: the plant state became non-finite at tick 3");
 }
 
-}  // namespace
+}  // namespace state_guard_test
 }  // namespace gyrostab

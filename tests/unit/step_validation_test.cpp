@@ -5,7 +5,7 @@
 #include "sim/models/gimbal_gyro.hpp"
 
 namespace gyrostab {
-namespace {
+namespace step_validation_test {
 
 using Gyro = models::GimbalGyro<>;
 
@@ -72,5 +72,5 @@ TEST(StepValidation, RefusesSplittingStepsNearTheKickResonance) {
   EXPECT_LE(c.largest_usable_step * 1256.6, 0.8 * 2.0 * std::numbers::pi);
 }
 
-}  // namespace
+}  // namespace step_validation_test
 }  // namespace gyrostab
