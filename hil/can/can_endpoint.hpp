@@ -12,6 +12,9 @@
 //   receive(...)     CAN frames from the socket into the set assembler until a tick's set completes; every
 //                    rejected frame (CRC, counter, length, id, ...) is counted in can_counters() and never
 //                    reaches the loop; a timeout is the loop's business as over LCM
+// Every set carries the link envelope in its header frame (link_seal.hpp: sender, session, 32-bit freshness,
+// MAC over the whole set): the guard binds, counts and refuses exactly as over LCM, and a refused set never
+// reaches the loop.
 // With a candump log attached, every frame sent and received is written to it in bus order, stamped with the
 // simulated time of its tick in lockstep (deterministic logs, canplayer replays them at the scene's rate) or
 // with the kernel's receive time / the send time (CLOCK_REALTIME) in real time.
@@ -32,6 +35,7 @@
 #include "hil/can/bus_load.hpp"
 #include "hil/can/candump_log.hpp"
 #include "hil/can/frame_codec.hpp"
+#include "hil/can/link_seal.hpp"
 #include "hil/can/socketcan_link.hpp"
 #include "hil/link/frame_endpoint.hpp"
 
@@ -62,13 +66,9 @@ namespace gyrostab::hil {
 template <>
 class FrameEndpoint<can::CanBusTransport> {
  public:
-  // The CAN frame map has no room for the link envelope yet: a CAN link binds no session and authenticates
-  // nothing (its frames keep their E2E CRC and alive counter); report.json says so.
-  static constexpr bool kEnvelopeOnTheWire = false;
-
   FrameEndpoint(can::CanBusTransport& bus, const GuardConfig& guard)
       : bus_(bus),
-        guard_(guard),
+        guard_(can::can_guard_config(guard)),
         sensor_tx_(can::Direction::kSensor, bus.nodes),
         actuator_tx_(can::Direction::kActuator, bus.nodes),
         sensor_rx_(can::Direction::kSensor, bus.nodes),
@@ -108,6 +108,8 @@ class FrameEndpoint<can::CanBusTransport> {
 
   // Binds to the peer of the set last returned by receive() (the handshake).
   void bind_to_last() { guard_.bind(last_rx_); }
+  // The envelope of the set last returned by receive().
+  const LinkEnvelope& last_envelope() const { return last_rx_; }
   const LinkGuard& guard() const { return guard_; }
 
   LinkCounters& counters() { return counters_; }
@@ -189,6 +191,7 @@ class FrameEndpoint<can::CanBusTransport> {
       ++counters_.send_errors;
       return false;
     }
+    can::seal(std::span<can::CanFrame>(tx_.data(), n), guard_);
     last_send_ns_ = monotonic_ns();
     if (loss_ > 0.0 && loss_rng_.uniform() < loss_) {
       ++counters_.lost_by_fault;  // the whole set gone on the way (fault injection)
@@ -230,11 +233,15 @@ class FrameEndpoint<can::CanBusTransport> {
       const std::int64_t tick = static_cast<std::int64_t>(e) + delta;
       log_frame(f, tick < 0 ? 0 : tick);
       if (rx.accept(f) != can::FrameError::kNone || !rx.ready()) continue;
+      const std::size_t n = rx.ready_frames(rx_set_);
+      LinkEnvelope env;
+      if (can::open(std::span<const can::CanFrame>(rx_set_.data(), n), guard_, env) != GuardVerdict::kOk) {
+        rx.drop_ready();  // counted by the guard; the tick is still expected
+        continue;
+      }
       rx.take(out);
       ++counters_.received;
-      // No envelope on the wire: the set stands for a peer of its own so that the handshake binds (the
-      // controller takes frames of tick > 0 only once bound), and nothing else is judged.
-      last_rx_ = LinkEnvelope{1, guard_.session() != 0 ? guard_.session() : 1, 0, 0};
+      last_rx_ = env;
       if (sim_time_us != nullptr) *sim_time_us = static_cast<std::int64_t>(out.tick) * bus_.tick_ns / 1000;
       return RxStatus::kMessage;
     }
@@ -248,6 +255,7 @@ class FrameEndpoint<can::CanBusTransport> {
   can::FrameEncoder sensor_tx_, actuator_tx_;
   can::SetAssembler sensor_rx_, actuator_rx_;
   std::array<can::CanFrame, can::kMaxMessagesPerDirection> tx_{};
+  std::array<can::CanFrame, can::kMaxMessagesPerDirection> rx_set_{};
   msg::SensorFrame last_sensor_{};
   msg::ActuatorFrame last_actuator_{};
   Last last_kind_{Last::kNone};

@@ -249,6 +249,7 @@ FrameError SetAssembler::accept(const CanFrame& f) {
     std::memcpy(building_bytes_.data() + s.field_offset, f.data + s.start_bit / 8u, s.bit_length / 8u);
   }
   if (m.header) building_tick_ = header_tick;
+  building_frames_[idx] = f;
   have_ |= 1u << idx;
   ++counters_.accepted;
   count_values(m, f);
@@ -257,6 +258,7 @@ FrameError SetAssembler::accept(const CanFrame& f) {
     ready_ = true;
     ready_tick_ = building_tick_;
     ready_bytes_ = building_bytes_;
+    ready_frames_ = building_frames_;
     ++counters_.sets_completed;
     building_ = false;
     have_ = 0;
@@ -270,6 +272,14 @@ bool SetAssembler::take_bytes(std::uint8_t* out, std::size_t size, Direction d) 
   ready_ = false;
   if (ready_tick_ + 1 > expected_) expected_ = ready_tick_ + 1;
   return true;
+}
+
+std::size_t SetAssembler::ready_frames(std::span<CanFrame> out) const {
+  if (!ready_) return 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < kMessageCount && n < out.size(); ++i)
+    if ((mask_ & (1u << i)) != 0) out[n++] = ready_frames_[i];
+  return n;
 }
 
 bool SetAssembler::take(msg::SensorFrame& out) {

@@ -117,6 +117,11 @@ class SetAssembler {
   // must match the direction (sensor sets for kSensor); false when nothing is ready or it does not.
   bool take(msg::SensorFrame& out);
   bool take(msg::ActuatorFrame& out);
+  // The frames of the completed set as received, in map order (the header last): what the link envelope's MAC
+  // covers (link_seal.hpp). Returns their number (0 when nothing is ready).
+  std::size_t ready_frames(std::span<CanFrame> out) const;
+  // Clears ready() without taking the set (the link refused it): the receiver still expects the same tick.
+  void drop_ready() { ready_ = false; }
 
   // The loop stepped tick `tick` without a set (timeout): frames of ticks before `tick + 1` are late from now.
   void skip_through(std::uint64_t tick);
@@ -149,6 +154,8 @@ class SetAssembler {
   bool ready_{false};
   std::uint64_t ready_tick_{0};
   alignas(8) std::array<std::uint8_t, sizeof(msg::SensorFrame)> ready_bytes_{};
+  std::array<CanFrame, kMessageCount> building_frames_{};  // by message index
+  std::array<CanFrame, kMessageCount> ready_frames_{};
   RxCounters counters_{};
 };
 

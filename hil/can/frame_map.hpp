@@ -29,6 +29,13 @@
 //   bytes 2-3   tick tag: the low 16 bits of the tick the frame belongs to (the header frames also carry the
 //               full 64-bit tick), so the receiver assembles a tick's frames and never mixes ticks
 // Unused bytes up to the FD length are zero (covered by the CRC).
+//
+// The two header frames (SENSOR_HUB, CONTROLLER_CMD) end with the link envelope of the set, the one every
+// plant ⇄ controller link carries (hil/link/link_guard.hpp, docs/transport.md):
+//   bytes 44-47 sender id, 48-51 session id (both 32-bit: the ids are drawn as 32-bit values),
+//   bytes 52-55 the low 32 bits of the sender's freshness counter (SecOC's truncated freshness value),
+//   bytes 56-63 the MAC over the whole set (link_seal.hpp says which bytes); without a key an unkeyed
+//               SipHash over the same bytes, which binds the body frames to their header.
 #pragma once
 
 #include <cstddef>
@@ -93,6 +100,14 @@ inline constexpr std::size_t kTickTagByte = 2;
 inline constexpr std::size_t kEnvelopeBytes = 4;
 inline constexpr std::uint8_t kAliveMask = 0x0F;
 
+// Link envelope (header frames only).
+inline constexpr std::size_t kLinkSenderByte = 44;
+inline constexpr std::size_t kLinkSessionByte = 48;
+inline constexpr std::size_t kLinkFreshnessByte = 52;
+inline constexpr std::size_t kLinkMacByte = 56;
+inline constexpr std::size_t kLinkFreshnessBytes = 4;
+inline constexpr std::uint8_t kHeaderLength = 64;
+
 namespace detail {
 constexpr double kU64Max = 18446744073709551615.0;
 constexpr double kI64Min = -9223372036854775808.0;
@@ -118,6 +133,16 @@ constexpr int off(std::size_t struct_offset, std::size_t index = 0) {
       SignalSpec{"tick_tag", 16, 16, SignalKind::kUnsigned, kEnvelope, 1, 0, 0, 65535, "tick",              \
                  "low 16 bits of the controller tick this frame belongs to"}
 
+#define GYROSTAB_CAN_LINK_ENVELOPE                                                                        \
+  SignalSpec{"link_sender", 352, 32, SignalKind::kUnsigned, kEnvelope, 1, 0, 1, kU32Max, "",                 \
+             "sender id of this set (hil/link/link_guard.hpp)"},                                            \
+      SignalSpec{"link_session", 384, 32, SignalKind::kUnsigned, kEnvelope, 1, 0, 1, kU32Max, "",            \
+                 "session id drawn by the plant at start-up"},                                              \
+      SignalSpec{"link_freshness", 416, 32, SignalKind::kUnsigned, kEnvelope, 1, 0, 0, kU32Max, "",          \
+                 "low 32 bits of the sender's freshness counter (SecOC)"},                                  \
+      SignalSpec{"link_mac", 448, 64, SignalKind::kUnsigned, kEnvelope, 1, 0, 0, kU64Max, "",                \
+                 "SipHash-2-4 MAC over the set (keyed with --key-file, else unkeyed)"}
+
 // Sensor side ------------------------------------------------------------------------------------------------
 inline constexpr SignalSpec kSensorHubSignals[] = {
     GYROSTAB_CAN_ENVELOPE,
@@ -133,6 +158,7 @@ inline constexpr SignalSpec kSensorHubSignals[] = {
      kU32Max, "", "publisher's frame counter, wraps at 2^32"},
     {"rotor_speed", 288, 64, SignalKind::kDouble, off<double>(GYROSTAB_CAN_SOFF(rotor_speed_rad_s)), 1, 0,
      kR.rotor_speed_rad_s.min, kR.rotor_speed_rad_s.max, "rad/s", "rotor spin speed relative to the innermost gimbal"},
+    GYROSTAB_CAN_LINK_ENVELOPE,
 };
 
 inline constexpr SignalSpec kImuSignals[] = {
@@ -191,6 +217,7 @@ inline constexpr SignalSpec kControllerCommandSignals[] = {
      kU32Max, "", "controller's frame counter, wraps at 2^32"},
     {"precession_brake", 288, 64, SignalKind::kDouble, off<double>(GYROSTAB_CAN_AOFF(precession_brake)), 1, 0, 0.0,
      1.0, "", "precession brake on axis 2: 0 released, 1 full brake"},
+    GYROSTAB_CAN_LINK_ENVELOPE,
 };
 
 #define GYROSTAB_CAN_DRIVE_COMMAND(n, axis)                                                                      \
@@ -207,6 +234,7 @@ inline constexpr SignalSpec kDrive2CommandSignals[] = GYROSTAB_CAN_DRIVE_COMMAND
 #undef GYROSTAB_CAN_DRIVE_COMMAND
 #undef GYROSTAB_CAN_DRIVE_FEEDBACK
 #undef GYROSTAB_CAN_ENVELOPE
+#undef GYROSTAB_CAN_LINK_ENVELOPE
 #undef GYROSTAB_CAN_AOFF
 #undef GYROSTAB_CAN_SOFF
 }  // namespace detail
@@ -218,16 +246,19 @@ inline constexpr MessageSpec kMessages[] = {
      "torque and voltage command to the axis-1 gimbal drive"},
     {0x102, "DRIVE2_CMD", "controller", Direction::kActuator, 20, kNodeDrive2, false, detail::kDrive2CommandSignals,
      "torque and voltage command to the axis-2 gimbal drive"},
-    {0x080, "CONTROLLER_CMD", "controller", Direction::kActuator, 48, 0, true, detail::kControllerCommandSignals,
-     "command header: tick, times, status (safe state), precession brake; completes the tick's command set"},
+    {0x080, "CONTROLLER_CMD", "controller", Direction::kActuator, kHeaderLength, 0, true,
+     detail::kControllerCommandSignals,
+     "command header: tick, times, status (safe state), precession brake, link envelope; completes the tick's "
+     "command set"},
     {0x181, "DRIVE1_FB", "drive1", Direction::kSensor, 32, kNodeDrive1, false, detail::kDrive1FeedbackSignals,
      "axis-1 gimbal drive feedback: angle, rate, winding current, encoder"},
     {0x182, "DRIVE2_FB", "drive2", Direction::kSensor, 32, kNodeDrive2, false, detail::kDrive2FeedbackSignals,
      "axis-2 gimbal drive feedback: angle, rate, winding current, encoder"},
     {0x190, "IMU", "imu", Direction::kSensor, 64, kNodeImu, false, detail::kImuSignals,
      "carrier attitude (roll, pitch, yaw) and angular velocity"},
-    {0x1A0, "SENSOR_HUB", "sensor_hub", Direction::kSensor, 48, 0, true, detail::kSensorHubSignals,
-     "sensor frame header: tick, times, sequence, status, rotor speed; completes the tick's sensor set"},
+    {0x1A0, "SENSOR_HUB", "sensor_hub", Direction::kSensor, kHeaderLength, 0, true, detail::kSensorHubSignals,
+     "sensor frame header: tick, times, sequence, status, rotor speed, link envelope; completes the tick's sensor "
+     "set"},
 };
 inline constexpr std::size_t kMessageCount = sizeof(kMessages) / sizeof(kMessages[0]);
 inline constexpr std::size_t kMaxMessagesPerDirection = 4;

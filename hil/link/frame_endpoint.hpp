@@ -33,9 +33,6 @@ inline GuardConfig controller_guard(std::uint64_t own_id, std::uint64_t session,
 template <class Transport>
 class FrameEndpoint {
  public:
-  // Every frame carries the link envelope (sender, session, freshness, MAC).
-  static constexpr bool kEnvelopeOnTheWire = true;
-
   FrameEndpoint(Transport& transport, const GuardConfig& guard) : transport_(transport), guard_(guard) {}
 
   // Encodes, secures and publishes `f`; the frame's bytes are kept for resend(). false: encoding or the

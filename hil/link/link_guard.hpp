@@ -1,6 +1,7 @@
 // Who may talk on a plant ⇄ controller link: session binding and, with a key, authentication of every frame
 // (docs/transport.md, "Sessions and authentication"). Transport-independent: the LCM and in-memory links
-// (frame_endpoint.hpp) and the CAN FD link (hil/can/can_endpoint.hpp) put the same envelope on every frame.
+// (frame_endpoint.hpp) put the envelope on every frame, the CAN FD link on every set, in its header frame
+// (hil/can/link_seal.hpp).
 //
 // Envelope of every frame: the sender's id, the session id, a freshness value and a MAC.
 //   - The plant draws the session id at start-up from the OS's random source (nonzero, 32 bits so that a CAN
@@ -94,7 +95,12 @@ class LinkGuard {
 
   // Judges a received frame; binds nothing. kOk: the frame may be acted on (the order checks still apply).
   GuardVerdict check(const LinkEnvelope& e, std::span<const std::uint8_t> payload) {
-    GuardVerdict v = judge(e, payload);
+    return count(judge(e, payload));
+  }
+
+  // Counts a refusal the transport made itself (a CAN set whose body does not belong to its header) and
+  // returns it.
+  GuardVerdict count(GuardVerdict v) {
     switch (v) {
       case GuardVerdict::kOk: break;
       case GuardVerdict::kRecorded: ++counters_.recorded; break;

@@ -5,16 +5,21 @@
 //   2. candump log text, line by line, through parse_candump_line, and every parsed frame into the assemblers.
 // Invariants beyond "no crash, no sanitizer report": every frame is either accepted or rejected with one
 // cause (frames = accepted + rejections), a completed set can be taken exactly once, and its tick agrees with
-// the tick tag of the frames that completed it. Built with -DGYROSTAB_FUZZ=ON (clang);
+// the tick tag of the frames that completed it. A completed set is also judged by the link envelope
+// (hil/can/link_seal.hpp): under a key the input does not know it never passes (it would be a forgery), and
+// without one a set that passes names a live session and sender (never 0). Built with -DGYROSTAB_FUZZ=ON (clang);
 // run with tools/fuzz/run-can-fuzz.
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <optional>
+#include <span>
 #include <string_view>
 
 #include "hil/can/candump_log.hpp"
 #include "hil/can/frame_codec.hpp"
+#include "hil/can/link_seal.hpp"
 
 namespace {
 
@@ -23,12 +28,28 @@ using gyrostab::can::Direction;
 using gyrostab::can::FrameError;
 using gyrostab::can::SetAssembler;
 
+void judge_envelope(const SetAssembler& rx) {
+  std::array<CanFrame, gyrostab::can::kMaxMessagesPerDirection> set{};
+  const std::size_t n = rx.ready_frames(set);
+  if (n == 0) __builtin_trap();
+  const std::span<const CanFrame> frames(set.data(), n);
+  gyrostab::firmware::link::Key128 secret;
+  for (std::size_t i = 0; i < secret.bytes.size(); ++i) secret.bytes[i] = static_cast<std::uint8_t>(0x6b ^ (i * 53));
+  gyrostab::hil::LinkGuard keyed(gyrostab::can::can_guard_config(gyrostab::hil::GuardConfig{7, 0, secret, 1, 2}));
+  gyrostab::hil::LinkEnvelope e;
+  if (gyrostab::can::open(frames, keyed, e) == gyrostab::hil::GuardVerdict::kOk) __builtin_trap();
+  gyrostab::hil::LinkGuard plain(gyrostab::can::can_guard_config(gyrostab::hil::GuardConfig{7, 0, std::nullopt, 1, 2}));
+  if (gyrostab::can::open(frames, plain, e) == gyrostab::hil::GuardVerdict::kOk && (e.session == 0 || e.sender == 0))
+    __builtin_trap();
+}
+
 void check(SetAssembler& rx, const CanFrame& f) {
   const FrameError e = rx.accept(f);
   const auto& c = rx.counters();
   if (c.frames != c.accepted + c.rejected_total()) __builtin_trap();
   if (e != FrameError::kNone && c.last_error != e) __builtin_trap();
   if (rx.ready()) {
+    judge_envelope(rx);
     const std::uint64_t tick = rx.ready_tick();
     if (e == FrameError::kNone) {
       const auto tag = static_cast<std::uint16_t>(f.data[2] | (f.data[3] << 8));

@@ -10,16 +10,20 @@
 // lockstep run: it completes bit-identical to in-process, the flood's frames on our id counted as rejected.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <optional>
 
 #include "firmware/msg/fault_bits.hpp"
 #include "hil/can/frame_codec.hpp"
+#include "hil/can/link_seal.hpp"
 #include "hil/can/socketcan_link.hpp"
+#include "hil/link/frame_endpoint.hpp"
 #include "tests/hil/hil_test_support.hpp"
 #include "tools/run/can_link_setup.hpp"
 
@@ -52,7 +56,9 @@ const char* name_of(Bad b) {
 class FakePlant {
  public:
   static constexpr can::NodeSet kNodes = can::kNodeImu | can::kNodeDrive2;
-  FakePlant() {
+  static constexpr std::uint64_t kSession = 0x5e551011;
+  explicit FakePlant(std::optional<firmware::link::Key128> key = std::nullopt)
+      : guard_(can::can_guard_config(hil::plant_guard(kSession, key))) {
     can::SocketCanConfig c;
     c.ifname = can_if();
     for (const can::MessageSpec& m : can::kMessages)
@@ -74,10 +80,18 @@ class FakePlant {
 
   // Sends the set of tick k, with the DRIVE2_FB frame made bad as `bad` says (kSilent: nothing). Returns the
   // number of bad frames put on the bus.
-  int send(std::uint64_t k, std::optional<Bad> bad) {
+  int send(std::uint64_t k, std::optional<Bad> bad) { return send(k, bad, guard_); }
+
+  // The set of tick k sealed by another end's guard (a second plant, a forger): the frames continue this
+  // plant's alive counters, as a forger that reads the bus would make them, so only the envelope tells.
+  void send_as(std::uint64_t k, hil::LinkGuard& other) { send(k, std::nullopt, other); }
+
+ private:
+  int send(std::uint64_t k, std::optional<Bad> bad, hil::LinkGuard& guard) {
     if (bad == Bad::kSilent) return 0;
     std::array<CanFrame, can::kMaxMessagesPerDirection> frames{};
     const std::size_t n = enc_.encode(frame(k), frames);
+    can::seal(std::span<CanFrame>(frames.data(), n), guard);
     int bad_frames = 0;
     for (std::size_t i = 0; i < n; ++i) {
       CanFrame f = frames[i];
@@ -94,6 +108,7 @@ class FakePlant {
     return bad_frames;
   }
 
+ public:
   // Waits for the controller's command set (any tick) until the deadline.
   bool receive(msg::ActuatorFrame& out, std::int64_t deadline) {
     for (;;) {
@@ -130,6 +145,7 @@ class FakePlant {
   }
 
   can::SocketCan socket_;
+  hil::LinkGuard guard_;
   can::FrameEncoder enc_{can::Direction::kSensor, kNodes};
   can::SetAssembler rx_{can::Direction::kActuator, kNodes};
   std::uint8_t last_good_alive_{0};
@@ -209,6 +225,66 @@ TEST(CanBadFrames, BadCrc) { run_case(Bad::kBadCrc); }
 TEST(CanBadFrames, StaleCounter) { run_case(Bad::kStaleCounter); }
 TEST(CanBadFrames, SkippedCounter) { run_case(Bad::kSkippedCounter); }
 TEST(CanBadFrames, BusSilent) { run_case(Bad::kSilent); }
+
+// The link envelope over CAN: after the handshake, a complete, well-formed set of tick K whose header names
+// another session (without a key), or the right session under the wrong key (with one), is refused before
+// the firmware sees it — counted in link.session.refused — and the genuine set of tick K that follows drives
+// the command of tick K as if nothing had happened.
+void run_session_case(bool keyed) {
+  SCOPED_TRACE(keyed ? "keyed: a forged MAC" : "unkeyed: another session");
+  TempDir d;
+  firmware::link::Key128 key;
+  for (std::size_t i = 0; i < key.bytes.size(); ++i) key.bytes[i] = static_cast<std::uint8_t>(0xa5 ^ (i * 29));
+  std::vector<std::string> args{gyrostab_bin(), "controller", scene("ship-roll-damper-active.toml"), "--can-if",
+                                can_if(), "--can-no-filter", "--ticks", "1000", "--timeout-ms", "300", "--out",
+                                d / "controller"};
+  if (keyed) {
+    std::string hex;
+    char b[3];
+    for (std::uint8_t v : key.bytes) {
+      std::snprintf(b, sizeof b, "%02x", v);
+      hex += b;
+    }
+    const std::string key_path = d / "link.key";
+    std::ofstream(key_path) << hex << "\n";
+    ASSERT_EQ(::chmod(key_path.c_str(), 0600), 0);
+    args.insert(args.end(), {"--key-file", key_path});
+  }
+  const pid_t controller = spawn(args);
+  FakePlant plant(keyed ? std::optional(key) : std::nullopt);
+  firmware::link::Key128 wrong = key;
+  wrong.bytes[0] ^= 1;
+  hil::LinkGuard other(can::can_guard_config(
+      hil::plant_guard(keyed ? FakePlant::kSession : FakePlant::kSession + 1, keyed ? std::optional(wrong) : std::nullopt)));
+  // A forger's freshness runs ahead of the plant's (which resends tick 0 until the controller is up), else its
+  // set is refused as a replay before its MAC is looked at.
+  for (int i = 0; i < 5000; ++i) other.protect({});
+  msg::ActuatorFrame a{};
+  for (std::uint64_t k = 0; k <= kGoodTicks; ++k) {
+    if (k == kGoodTicks) plant.send_as(k, other);  // refused: the controller keeps waiting for tick K
+    bool got = false;
+    const std::int64_t deadline = mono_ns() + (k == 0 ? 120'000'000'000 : 10'000'000'000);
+    while (!got && mono_ns() < deadline) {
+      plant.send(k, std::nullopt);
+      got = plant.receive(a, mono_ns() + (k == 0 ? 20'000'000 : 2'000'000'000)) && a.tick == k;
+    }
+    ASSERT_TRUE(got) << "no command for tick " << k;
+    EXPECT_FALSE(msg::has(a.status, msg::FaultBit::kSafeState)) << "tick " << k;
+    EXPECT_FALSE(msg::has(a.status, msg::FaultBit::kHoldingLastGood)) << "tick " << k;
+  }
+  // Then the plant falls silent: the controller declares it lost (exit 6) and writes its report.
+  EXPECT_EQ(wait_for(controller).code, 6);
+  const nlohmann::json r = read_json(d / "controller/report.json");
+  ASSERT_TRUE(r.contains("link")) << "no controller report";
+  const nlohmann::json& session = r["link"]["session"];
+  EXPECT_EQ(session["authenticated"], keyed);
+  EXPECT_EQ(session["refused"][keyed ? "bad_mac" : "foreign"], 1) << session.dump();
+  EXPECT_EQ(session["refused"][keyed ? "foreign" : "bad_mac"], 0) << session.dump();
+  EXPECT_EQ(r["link"]["counters"]["accepted"], kGoodTicks + 1);
+}
+
+TEST(CanSession, ASetOfAnotherSessionIsRefused) { run_session_case(false); }
+TEST(CanSession, ASetWithAForgedMacIsRefused) { run_session_case(true); }
 
 TEST(CanFlood, CangenFloodDoesNotStallALockstepRun) {
   TempDir d;

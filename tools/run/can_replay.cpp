@@ -1,5 +1,6 @@
 #include "tools/run/can_replay.hpp"
 
+#include "hil/can/link_seal.hpp"
 #include "tools/devices/registry.hpp"
 
 namespace gyrostab::tools {
@@ -112,8 +113,15 @@ int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop
         return kReplayExitMismatch;
       }
     }
-    const can::CanFrame want = due.front();
+    can::CanFrame want = due.front();
     due.pop_front();
+    // The header's link envelope (sender, session, freshness, MAC) is the recorded run's, drawn at its start,
+    // not something the controller computes from the log: taken from the recorded frame. Everything else,
+    // the CRC over it included, must match bit for bit.
+    if (const int i = can::message_index(want.id); i >= 0 && can::kMessages[static_cast<std::size_t>(i)].header &&
+                                                   f.len == want.len) {
+      can::write_link_envelope(want, can::read_link_envelope(f));
+    }
     const bool same = want.id == f.id && want.len == f.len &&
                       (want.flags & (can::kFlagFd | can::kFlagBrs | can::kFlagEsi)) ==
                           (f.flags & (can::kFlagFd | can::kFlagBrs | can::kFlagEsi)) &&

@@ -59,14 +59,14 @@ bool read_key_file(const std::string& path, firmware::link::Key128& key, std::st
 }
 
 std::string key_file_problem(const TransportOptions& t) {
-  if (t.key_file.empty() || (t.can_if.empty() && t.transport != "can")) return "";
-  return "--key-file: CAN frames do not carry the link envelope yet, so they cannot be authenticated "
-         "(docs/transport.md); authenticate over LCM";
+  if (t.key_file.empty()) return "";
+  firmware::link::Key128 key;
+  std::string error;
+  return read_key_file(t.key_file, key, error) ? "" : error;
 }
 
 bool link_identity(const TransportOptions& t, bool plant_side, LinkIdentity& out, std::string& error) {
   out = LinkIdentity{};
-  if (error = key_file_problem(t); !error.empty()) return false;
   if (!t.key_file.empty()) {
     firmware::link::Key128 key;
     if (!read_key_file(t.key_file, key, error)) return false;

@@ -19,8 +19,8 @@ struct LinkIdentity {
   std::optional<firmware::link::Key128> key;
 };
 
-// "" or why the request's --key-file cannot be used on its link (CAN frames carry no envelope yet: accepting
-// the key and sending unauthenticated frames would be a silent downgrade).
+// "" or why the request's --key-file cannot be used (unreadable, too open, not a key): checked by the parent of
+// a process pair before it touches the output directory or starts a child.
 std::string key_file_problem(const TransportOptions& t);
 
 // false with `error` set: the OS random source failed, or the key file is refused.

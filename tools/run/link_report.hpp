@@ -57,18 +57,10 @@ inline nlohmann::json session_json(const hil::LinkGuard& g) {
            {{"recorded", c.recorded}, {"foreign", c.foreign}, {"bad_mac", c.bad_mac}, {"replayed", c.replayed}}}};
 }
 
-// report.json link.session: who this end was, whom it bound to, and what the guard refused; on a link whose
-// frames do not carry the envelope (CAN), only that.
+// report.json link.session: who this end was, whom it bound to, and what the guard refused.
 template <class Endpoint>
 nlohmann::json session_json(const Endpoint& ep) {
-  if constexpr (!Endpoint::kEnvelopeOnTheWire) {
-    return {{"on_the_wire", false}, {"note", "CAN frames do not carry the session envelope: nothing is bound or "
-                                             "authenticated on this link (docs/transport.md)"}};
-  } else {
-    nlohmann::json j = session_json(ep.guard());
-    j["on_the_wire"] = true;
-    return j;
-  }
+  return session_json(ep.guard());
 }
 
 
