@@ -109,6 +109,18 @@ class FakePlant {
   }
 
  public:
+  // Sends the good set of tick k until the controller's command for tick k comes back; tick 0 is resent every
+  // 20 ms until the controller is up. Deadlines, not a number of tries: a sanitizer build starting in the
+  // emulated VM took more than 10 s.
+  bool exchange(std::uint64_t k, msg::ActuatorFrame& a) {
+    const std::int64_t deadline = mono_ns() + (k == 0 ? 120'000'000'000 : 10'000'000'000);
+    while (mono_ns() < deadline) {
+      send(k, std::nullopt);
+      if (receive(a, mono_ns() + (k == 0 ? 20'000'000 : 2'000'000'000)) && a.tick == k) return true;
+    }
+    return false;
+  }
+
   // Waits for the controller's command set (any tick) until the deadline.
   bool receive(msg::ActuatorFrame& out, std::int64_t deadline) {
     for (;;) {
@@ -163,16 +175,9 @@ void run_case(Bad bad) {
              "--can-no-filter", "--ticks", "1000", "--timeout-ms", "300", "--out", d / "controller"});
   FakePlant plant;
   msg::ActuatorFrame a{};
-  // Good ticks; tick 0 is resent every 20 ms until the controller is up and answers. Start-up is bounded by a
-  // deadline, not a number of tries: a sanitizer build loading in the emulated VM took more than 10 s.
+  // Good ticks (tick 0 resent until the controller is up).
   for (std::uint64_t k = 0; k < kGoodTicks; ++k) {
-    bool got = false;
-    const std::int64_t deadline = mono_ns() + (k == 0 ? 120'000'000'000 : 10'000'000'000);
-    while (!got && mono_ns() < deadline) {
-      plant.send(k, std::nullopt);
-      got = plant.receive(a, mono_ns() + (k == 0 ? 20'000'000 : 2'000'000'000)) && a.tick == k;
-    }
-    ASSERT_TRUE(got) << "no command for good tick " << k;
+    ASSERT_TRUE(plant.exchange(k, a)) << "no command for good tick " << k;
     EXPECT_FALSE(msg::has(a.status, msg::FaultBit::kSafeState)) << "tick " << k;
   }
   // Tick K: bad from now on, resent every 20 ms as the plant does (each time bad again) for the first 150 ms of
@@ -262,13 +267,7 @@ void run_session_case(bool keyed) {
   msg::ActuatorFrame a{};
   for (std::uint64_t k = 0; k <= kGoodTicks; ++k) {
     if (k == kGoodTicks) plant.send_as(k, other);  // refused: the controller keeps waiting for tick K
-    bool got = false;
-    const std::int64_t deadline = mono_ns() + (k == 0 ? 120'000'000'000 : 10'000'000'000);
-    while (!got && mono_ns() < deadline) {
-      plant.send(k, std::nullopt);
-      got = plant.receive(a, mono_ns() + (k == 0 ? 20'000'000 : 2'000'000'000)) && a.tick == k;
-    }
-    ASSERT_TRUE(got) << "no command for tick " << k;
+    ASSERT_TRUE(plant.exchange(k, a)) << "no command for tick " << k;
     EXPECT_FALSE(msg::has(a.status, msg::FaultBit::kSafeState)) << "tick " << k;
     EXPECT_FALSE(msg::has(a.status, msg::FaultBit::kHoldingLastGood)) << "tick " << k;
   }
