@@ -136,8 +136,14 @@ bool SocketCan::open(const SocketCanConfig& config, std::string& error) {
     return false;
   }
   if (config.receive_buffer_bytes > 0) {
-    // A request: the kernel caps it at net.core.rmem_max (and doubles it for bookkeeping). Not fatal.
-    ::setsockopt(s, SOL_SOCKET, SO_RCVBUF, &config.receive_buffer_bytes, sizeof config.receive_buffer_bytes);
+    // A process with CAP_NET_ADMIN (root, as in the test VM) gets the size it asks for (SO_RCVBUFFORCE);
+    // otherwise it is a request that the kernel caps at net.core.rmem_max (212 992 bytes by default, a few
+    // hundred FD frames: a slow receiver lost frames to a canplayer burst). The kernel doubles it for
+    // bookkeeping. Not fatal.
+    if (::setsockopt(s, SOL_SOCKET, SO_RCVBUFFORCE, &config.receive_buffer_bytes,
+                     sizeof config.receive_buffer_bytes) < 0) {
+      ::setsockopt(s, SOL_SOCKET, SO_RCVBUF, &config.receive_buffer_bytes, sizeof config.receive_buffer_bytes);
+    }
   }
   sockaddr_can addr{};
   addr.can_family = AF_CAN;
