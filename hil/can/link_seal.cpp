@@ -19,10 +19,8 @@ void store_le(std::uint8_t* p, std::uint64_t v, std::size_t bytes) {
   for (std::size_t i = 0; i < bytes; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
 }
 
-std::uint64_t unkeyed_mac(std::span<const CanFrame> set) {
-  std::array<std::uint8_t, kMaxMacPayload> payload{};
-  const std::size_t n = set_mac_payload(set, payload);
-  return firmware::link::siphash24(kNoKey, std::span<const std::uint8_t>(payload.data(), n));
+std::uint64_t unkeyed_mac(std::span<const std::uint8_t> payload) {
+  return firmware::link::siphash24(kNoKey, payload);
 }
 
 }  // namespace
@@ -65,7 +63,7 @@ void seal(std::span<CanFrame> set, hil::LinkGuard& guard) {
   std::array<std::uint8_t, kMaxMacPayload> payload{};
   const std::size_t n = set_mac_payload(set, payload);
   hil::LinkEnvelope e = guard.protect(std::span<const std::uint8_t>(payload.data(), n));
-  if (!guard.authenticated()) e.mac = firmware::link::siphash24(kNoKey, std::span<const std::uint8_t>(payload.data(), n));
+  if (!guard.authenticated()) e.mac = unkeyed_mac(std::span<const std::uint8_t>(payload.data(), n));
   write_link_envelope(header, e);
 }
 
@@ -74,10 +72,11 @@ hil::GuardVerdict open(std::span<const CanFrame> set, hil::LinkGuard& guard, hil
   env = read_link_envelope(set.back());
   std::array<std::uint8_t, kMaxMacPayload> payload{};
   const std::size_t n = set_mac_payload(set, payload);
-  const hil::GuardVerdict v = guard.check(env, std::span<const std::uint8_t>(payload.data(), n));
+  const std::span<const std::uint8_t> covered(payload.data(), n);
+  const hil::GuardVerdict v = guard.check(env, covered);
   if (v != hil::GuardVerdict::kOk || guard.authenticated()) return v;
   // Without a key: a set whose body does not belong to its header (frames of two senders) is not this peer's.
-  if (env.mac != unkeyed_mac(set)) return guard.count(hil::GuardVerdict::kForeign);
+  if (env.mac != unkeyed_mac(covered)) return guard.count(hil::GuardVerdict::kForeign);
   return v;
 }
 
