@@ -285,6 +285,65 @@ void run_session_case(bool keyed) {
 TEST(CanSession, ASetOfAnotherSessionIsRefused) { run_session_case(false); }
 TEST(CanSession, ASetWithAForgedMacIsRefused) { run_session_case(true); }
 
+// Two complete pairs on one bus, each started as `run --transport can` (the same identifiers, as two pairs
+// started by hand would use): neither may act on the other's frames nor end as a silent success. On CAN the
+// two pairs' frames interleave on every identifier, so many sets never complete. Each run ends as one of:
+//   7  completed bit-identical to its in-process run, foreign sets refused;
+//   8  completed, but some ticks got zero torque because their command never arrived (named in the message);
+//   6  a process lost its peer, the message naming the other pair's frames as the likely cause;
+// never 0 with the other pair's frames on its bus, never a crash, never results changed by the other's frames.
+TEST(CanSession, TwoPairsOnOneBusAreNeverASilentSuccess) {
+  TempDir d;
+  const std::string a = scene("monorail.toml"), b = scene("ship-roll-damper-active.toml");
+  const std::vector<std::string> ticks{"--ticks", "2000", "--no-progress"};
+  ASSERT_EQ(run(cat({gyrostab_bin(), "run", a, "--out", d / "ref_a"}, ticks)).code, 0);
+  ASSERT_EQ(run(cat({gyrostab_bin(), "run", b, "--out", d / "ref_b"}, ticks)).code, 0);
+  const std::vector<std::string> can{"--transport", "can", "--can-if", can_if(), "--timeout-ms", "2000"};
+  const pid_t pa = spawn(cat(cat({gyrostab_bin(), "run", a, "--out", d / "a"}, ticks), can));
+  const pid_t pb = spawn(cat(cat({gyrostab_bin(), "run", b, "--out", d / "b"}, ticks), can));
+  const Exit ea = wait_for(pa), eb = wait_for(pb);
+  std::uint64_t disturbed = 0;
+  for (const auto& [name, e] : {std::pair{std::string("a"), ea}, std::pair{std::string("b"), eb}}) {
+    SCOPED_TRACE(name);
+    const nlohmann::json r = read_json(d / name + "/report.json");
+    ASSERT_TRUE(r.contains("link") && r.contains("processes")) << "no report";
+    const std::string happened = r["processes"]["what_happened"].get<std::string>();
+    const auto count = [](const nlohmann::json& link) {
+      std::uint64_t n = link["session"]["refused"]["foreign"].get<std::uint64_t>();
+      for (const char* rx : {"sensor_rx", "actuator_rx"}) {
+        if (!link["can"].contains(rx)) continue;
+        const nlohmann::json& rej = link["can"][rx]["rejected"];
+        for (const char* cause : {"alive counter skipped (frames lost)", "alive counter repeated (stale frame)"})
+          if (rej.contains(cause)) n += rej[cause].get<std::uint64_t>();
+      }
+      return n;
+    };
+    const std::uint64_t seen = count(r["link"]) + count(r["controller_process"]["link"]);
+    disturbed += seen;
+    std::printf("[ pair %s ] exit %d, foreign sets and out-of-sequence frames: %llu; %s\n", name.c_str(), e.code,
+                static_cast<unsigned long long>(seen), happened.c_str());
+    const Outputs ref = outputs_of(d / ("ref_" + name)), got = outputs_of(d / name);
+    switch (e.code) {
+      case 0:
+        EXPECT_EQ(seen, 0u) << "a run shared its bus with another pair and exited 0";
+        [[fallthrough]];
+      case 7:
+        EXPECT_EQ(ref.figures, got.figures) << "a completed run's results changed";
+        EXPECT_TRUE(ref.csv == got.csv) << "a completed run's results changed";
+        break;
+      case 8:
+        EXPECT_NE(happened.find("zero torque"), std::string::npos) << happened;
+        break;
+      case 6:
+        EXPECT_NE(happened.find("another pair"), std::string::npos) << "the cause is not named: " << happened;
+        break;
+      default:
+        ADD_FAILURE() << "exit " << e.code << ": " << happened;
+    }
+  }
+  EXPECT_GT(disturbed, 0u) << "the two runs never overlapped";
+}
+
 TEST(CanFlood, CangenFloodDoesNotStallALockstepRun) {
   TempDir d;
   const std::string path = scene("ship-roll-damper-active.toml");

@@ -313,7 +313,8 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
     happened = "plant lost: no sensor frame for tick " + std::to_string(link.lost_at_tick) + " within " +
                std::to_string(link.silent_ns / 1'000'000) + " ms; " +
                (link.safe_state_tick >= 0 ? "safe state from tick " + std::to_string(link.safe_state_tick)
-                                          : std::string("safe state NOT reached"));
+                                          : std::string("safe state NOT reached")) +
+               refused_hint(ep);
     l["peer"] = {{"lost", true},
                  {"lost_at_tick", link.lost_at_tick},
                  {"silent_ms", static_cast<double>(link.silent_ns) * 1e-6},

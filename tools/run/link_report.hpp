@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "hil/can/frame_codec.hpp"
 #include "hil/link/link_counters.hpp"
 #include "hil/rt/latency_histogram.hpp"
 #include "hil/link/link_guard.hpp"
@@ -67,6 +68,25 @@ nlohmann::json session_json(const Endpoint& ep) {
 // The exit code of a process whose loop completed: 0, or kExitForeignFrames when the link carried frames that
 // were not this session's or failed its authentication — the results stand (none was acted on), but the link
 // was shared, replayed onto or attacked, and the exit code says so (with one line on stderr).
+// Appended to "peer lost": a peer that falls silent while frames of other senders arrive is most likely
+// drowned by another pair (on CAN the two pairs' frames share identifiers, so their alive counters interleave
+// and few sets complete) or by a log played onto the link. The exit code stays 6 (the run did not complete);
+// the message names the likely cause.
+template <class Endpoint>
+std::string refused_hint(const Endpoint& ep) {
+  std::string hint;
+  if (const std::uint64_t refused = ep.guard().counters().rejected(); refused > 0)
+    hint += "; " + std::to_string(refused) + " frames on the link were not this session's or failed its authentication";
+  if constexpr (requires { ep.sensor_counters(); }) {
+    std::uint64_t out_of_sequence = 0;
+    for (const auto* c : {&ep.sensor_counters(), &ep.actuator_counters()})
+      out_of_sequence += c->count(can::FrameError::kCounterSkipped) + c->count(can::FrameError::kCounterRepeated);
+    if (out_of_sequence > 0)
+      hint += "; " + std::to_string(out_of_sequence) + " CAN frames had alive counters out of sequence";
+  }
+  return hint.empty() ? hint : hint + " (another pair or a played log on this link?)";
+}
+
 inline int completed_exit_code(const char* role, const std::string& scene_name, const hil::LinkGuard& g) {
   const std::uint64_t refused = g.counters().rejected();
   if (refused == 0) return 0;

@@ -254,7 +254,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   if (link.peer_lost) {
     happened = "controller lost: no actuator frame for tick " + std::to_string(link.lost_at_tick) + " within " +
                std::to_string(link.silent_ns / 1'000'000) + " ms; drives at zero torque from tick " +
-               std::to_string(link.zero_torque_from_tick);
+               std::to_string(link.zero_torque_from_tick) + refused_hint(ep);
     l["peer"] = {{"lost", true},
                  {"lost_at_tick", link.lost_at_tick},
                  {"silent_ms", static_cast<double>(link.silent_ns) * 1e-6},

@@ -103,6 +103,7 @@ struct Child {
   pid_t pid{-1};
   bool done{false};
   int status{0};
+  bool stopped_by_run{false};  // SIGTERM from the parent after the other child failed
   bool exited() const { return done && WIFEXITED(status); }
   bool killed() const { return done && WIFSIGNALED(status); }
   int code() const { return WIFEXITED(status) ? WEXITSTATUS(status) : -1; }
@@ -113,6 +114,7 @@ struct Child {
     return j;
   }
   std::string how() const {
+    if (stopped_by_run) return std::string(name) + " stopped by the run after the other process failed";
     if (killed()) return std::string(name) + " killed by signal " + std::to_string(WTERMSIG(status));
     return std::string(name) + " exited with " + std::to_string(code());
   }
@@ -174,6 +176,7 @@ int run_process_pair(const RunRequest& req) {
         .count();
   };
   long long stop_other_at = -1;
+  const Child* first_failed = nullptr;
   int forwarded = 0;
   while (!controller.done || !plant.done) {
     if (g_stop_signal != 0 && forwarded == 0) {
@@ -191,7 +194,9 @@ int run_process_pair(const RunRequest& req) {
     }
     if (pid == 0) {
       if (stop_other_at >= 0 && now_ms() >= stop_other_at) {
-        kill(plant.done ? controller.pid : plant.pid, SIGTERM);
+        Child& other = plant.done ? controller : plant;
+        kill(other.pid, SIGTERM);
+        other.stopped_by_run = true;
         stop_other_at = -1;
       } else {
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -203,6 +208,7 @@ int run_process_pair(const RunRequest& req) {
     c.status = status;
     if (WIFEXITED(status) && WEXITSTATUS(status) != 0 && (!plant.done || !controller.done)) {
       stop_other_at = now_ms() + req.transport.timeout_ms + 2000;
+      first_failed = &c;
     }
   }
 
@@ -233,6 +239,24 @@ int run_process_pair(const RunRequest& req) {
     if (have_ctl && ctl.contains("link"))
       happened += "; controller: " + ctl["link"].value("what_happened", "");
   }
+  // Lockstep is the in-process run bit for bit unless a command does not arrive: that tick gets zero torque
+  // (the drive watchdog) and the loop goes on. Without an injected fault that is not this scene's run — a
+  // second pair on the bus that kept the sets from completing, say — and the run does not pass as completed.
+  const TransportOptions& t = req.transport;
+  const bool fault_injected = t.loss > 0 || t.jitter_max_us > 0 || t.sensor_drop.from >= 0 ||
+                              t.sensor_corrupt.from >= 0 || t.actuator_drop.from >= 0 || t.actuator_corrupt.from >= 0;
+  const std::int64_t zero_torque_ticks =
+      have_plant && report.contains("link") && report["link"].contains("drive_watchdog")
+          ? report["link"]["drive_watchdog"].value("zero_torque_ticks", std::int64_t{0})
+          : 0;
+  bool degraded = false;
+  if (completed(plant) && completed(controller) && !t.real_time && !fault_injected && zero_torque_ticks > 0) {
+    degraded = true;
+    happened = "degraded: " + std::to_string(zero_torque_ticks) +
+               " ticks got zero torque because their command did not arrive in time (link.drive_watchdog), with no "
+               "fault injected: not the lockstep run of this scene" +
+               (foreign ? "; " + happened : std::string());
+  }
   if (forwarded != 0) happened = std::string("stopped by ") + signal_name(forwarded) + "; " + happened;
   report["processes"] = {{"transport", req.transport.transport},
                          {"lcm_url", req.transport.lcm_url},
@@ -252,8 +276,12 @@ int run_process_pair(const RunRequest& req) {
     return 0;
   }
   std::fprintf(stderr, "gyrostab run: %s\n", happened.c_str());
-  if (foreign) return kExitForeignFrames;
   if (forwarded != 0) return 128 + forwarded;
+  if (degraded) return kExitDegraded;
+  if (foreign) return kExitForeignFrames;
+  // The child that failed first says why; the other was only stopped because of it.
+  if (first_failed != nullptr && (plant.stopped_by_run || controller.stopped_by_run))
+    return first_failed->exited() ? first_failed->code() : kExitPeerLost;
   if (plant.killed() || controller.killed()) return kExitPeerLost;
   if (plant.code() != 0) return plant.code();
   return controller.code();
