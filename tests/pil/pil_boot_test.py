@@ -6,9 +6,11 @@ double-precision FPU) runs it with deterministic instruction timing (-icount shi
 reads the image's memory through the QEMU monitor and requires that
   - SysTick paces the loop (g_systicks grows between two reads),
   - the real controller steps once per tick (g_actuator_tx.tick and .sequence grow with it),
+  - the controller accepted its configuration (the device's defaults: no kConfigRefused bit), so its tasks
+    are scheduled;
   - with no sensor frame ever delivered (there is no link yet), the firmware's fault monitor has put the
-    command in its safe state, as on the host: the kSafeState status bit, the precession brake on (1.0) and
-    zero torque on both gimbal axes.
+    command in its safe state, as on the host: the kSensorMissing, kAwaitingFirstFrame and kSafeState status
+    bits, the precession brake on (1.0) and zero torque on both gimbal axes.
 ActuatorFrame's layout is fixed by static_asserts in firmware/msg/actuator_frame.hpp (tick at 0, sequence at 24,
 status at 28, gimbal_torque_Nm at 32, precession_brake at 64), the same on host and target.
 
@@ -24,7 +26,11 @@ import sys
 import tempfile
 import time
 
-SAFE_STATE_BIT = 1 << 9  # FaultBit::kSafeState (firmware/msg/fault_bits.hpp)
+# firmware/msg/fault_bits.hpp and firmware/control/law_status_bits.hpp
+SENSOR_MISSING_BIT = 1 << 0  # FaultBit::kSensorMissing
+SAFE_STATE_BIT = 1 << 9  # FaultBit::kSafeState
+AWAITING_FIRST_FRAME_BIT = 1 << 10  # FaultBit::kAwaitingFirstFrame
+CONFIG_REFUSED_BIT = 1 << 26  # LawStatusBit::kConfigRefused
 
 
 def symbols(nm, elf):
@@ -117,7 +123,10 @@ def check_image(qemu, nm, elf, workdir):
     if not tick > tick0 > 0 or sequence < tick:
         problems.append("the controller does not step once per tick (tick %d then %d, sequence %d)"
                         % (tick0, tick, sequence))
-    if not status & SAFE_STATE_BIT or brake != 1.0 or torque != (0.0, 0.0):
+    if status & CONFIG_REFUSED_BIT:
+        problems.append("the controller refused its default configuration (status 0x%x)" % status)
+    expected = SENSOR_MISSING_BIT | SAFE_STATE_BIT | AWAITING_FIRST_FRAME_BIT
+    if status & expected != expected or brake != 1.0 or torque != (0.0, 0.0):
         problems.append("no safe state without sensor frames (status 0x%x, brake %r, torque %r)"
                         % (status, brake, torque))
     return "%s: %s" % (name, "; ".join(problems)) if problems else None
