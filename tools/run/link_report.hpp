@@ -64,10 +64,6 @@ nlohmann::json session_json(const Endpoint& ep) {
   return session_json(ep.guard());
 }
 
-
-// The exit code of a process whose loop completed: 0, or kExitForeignFrames when the link carried frames that
-// were not this session's or failed its authentication — the results stand (none was acted on), but the link
-// was shared, replayed onto or attacked, and the exit code says so (with one line on stderr).
 // Appended to "peer lost": a peer that falls silent while frames of other senders arrive is most likely
 // drowned by another pair (on CAN the two pairs' frames share identifiers, so their alive counters interleave
 // and few sets complete) or by a log played onto the link. The exit code stays 6 (the run did not complete);
@@ -87,6 +83,9 @@ std::string refused_hint(const Endpoint& ep) {
   return hint.empty() ? hint : hint + " (another pair or a played log on this link?)";
 }
 
+// The exit code of a process whose loop completed: 0, or kExitForeignFrames when the link carried frames that
+// were not this session's or failed its authentication — the results stand (none was acted on), but the link
+// was shared, replayed onto or attacked, and the exit code says so (with one line on stderr).
 inline int completed_exit_code(const char* role, const std::string& scene_name, const hil::LinkGuard& g) {
   const std::uint64_t refused = g.counters().rejected();
   if (refused == 0) return 0;
