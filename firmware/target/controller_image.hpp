@@ -17,6 +17,7 @@
 #include "firmware/msg/sensor_frame.hpp"
 #include "firmware/target/cortex_m4_registers.hpp"
 #include "firmware/target/dwt_cycle_clock.hpp"
+#include "firmware/target/systick.hpp"
 
 // The link's buffers, with external linkage so the compiler keeps every access.
 extern "C" {
@@ -33,12 +34,6 @@ namespace regs = cortex_m4;
 
 inline constexpr std::uint32_t kCoreHz = 216'000'000;  // core clock [Hz] (a Cortex-M7 at 216 MHz)
 
-inline void start_systick(std::uint32_t cycles_per_tick) {
-  regs::reg(regs::kSysTickLoad) = cycles_per_tick - 1u;
-  regs::reg(regs::kSysTickVal) = 0;
-  regs::reg(regs::kSysTickCtrl) = regs::kSysTickEnable | regs::kSysTickInterrupt | regs::kSysTickCoreClock;
-}
-
 // Builds the controller in static storage (no heap) and steps it once per tick, for ever.
 template <class Controller>
 [[noreturn]] void run_controller_image(const typename Controller::Config& config) {
@@ -46,7 +41,7 @@ template <class Controller>
   Controller& controller = *::new (storage) Controller(config, regs::DwtCycleClock{kCoreHz});
   regs::DwtCycleClock::start();
   const std::int64_t tick_ns = controller.tick_period_ns() > 0 ? controller.tick_period_ns() : 1'000'000;
-  start_systick(static_cast<std::uint32_t>(static_cast<std::int64_t>(kCoreHz) * tick_ns / 1'000'000'000));
+  regs::start_systick(static_cast<std::uint32_t>(static_cast<std::int64_t>(kCoreHz) * tick_ns / 1'000'000'000));
 
   std::uint64_t tick = 0;
   std::uint32_t seen = g_systicks;

@@ -14,6 +14,7 @@
 #include "firmware/scheduler/scheduler.hpp"
 #include "firmware/target/cortex_m4_registers.hpp"
 #include "firmware/target/dwt_cycle_clock.hpp"
+#include "firmware/target/systick.hpp"
 
 namespace m4 = gyrostab::firmware::cortex_m4;
 namespace fw = gyrostab::firmware;
@@ -90,12 +91,6 @@ class TargetController {
 
 TargetController g_controller;
 
-void start_systick(std::uint32_t cycles_per_tick) {
-  m4::reg(m4::kSysTickLoad) = cycles_per_tick - 1u;
-  m4::reg(m4::kSysTickVal) = 0;
-  m4::reg(m4::kSysTickCtrl) = m4::kSysTickEnable | m4::kSysTickInterrupt | m4::kSysTickCoreClock;
-}
-
 }  // namespace
 
 extern "C" void SysTick_Handler() {
@@ -105,7 +100,7 @@ extern "C" void SysTick_Handler() {
 extern "C" [[noreturn]] void firmware_main() {
   if (!g_controller.init()) __builtin_trap();
   m4::DwtCycleClock::start();
-  start_systick(kCoreHz / kTickHz);
+  m4::start_systick(kCoreHz / kTickHz);
 
   std::uint64_t tick = 0;
   std::uint32_t seen = g_systicks;
