@@ -184,6 +184,20 @@ int main(int argc, char** argv) {
     return gyrostab::tools::run_process_pair(run);
   }
   if (run_cmd->parsed()) {
+    const gyrostab::tools::TransportOptions& t = run.transport;
+    const bool target_options = !t.target_image.empty() || t.target_link != "fifo" ||
+                                t.qemu != gyrostab::tools::TransportOptions{}.qemu || t.target_faults.any();
+    if (t.transport != "target" && target_options) {
+      std::fprintf(stderr, "gyrostab run: --target-image, --target-link, --qemu and --target-fault need --transport target\n");
+      return 2;
+    }
+    if (t.transport == "target") {
+      // The plant runs here; the controller is the image on the emulated target (tools/run/plant_process.cpp).
+      run.role = gyrostab::tools::Role::kPlant;
+      return gyrostab::tools::run_scene(run);
+    }
+  }
+  if (run_cmd->parsed()) {
     if (const std::string bad = gyrostab::tools::check_inproc_options(run); !bad.empty()) {
       std::fprintf(stderr, "gyrostab run: %s\n", bad.c_str());
       return 2;

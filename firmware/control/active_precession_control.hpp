@@ -73,6 +73,7 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/sampled_loop_limits.hpp"
 #include "firmware/control/saturation.hpp"
+#include "firmware/math/deterministic_math.hpp"
 
 namespace gyrostab::firmware {
 
@@ -119,7 +120,7 @@ inline ActivePrecessionOutput active_precession_step(const ActivePrecessionParam
                                                      const ActivePrecessionInputs& in) {
   auto pos = [](double x) { return x > 0.0 ? x : 0.0; };
   ActivePrecessionOutput out;
-  const double cb = std::cos(in.beta);
+  const double cb = math::cos(in.beta);
   const double drive = p.H * cb * in.roll_rate;                  // D, gyroscopic drive on the case [N m]
   const double feedback = p.roll_rate_gain * cb * in.roll_rate;  // F [N m]
   const double sigma = in.beta < 0.0 ? -1.0 : 1.0;

@@ -50,6 +50,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include "firmware/math/deterministic_math.hpp"
 
 namespace gyrostab::firmware {
 
@@ -155,8 +156,8 @@ struct CurrentLoopSpec {
 
 // Exact discrete pole placement (see the top of the file). Gains in V/A and V/(A s).
 inline PiParams<double> design_current_pi(const CurrentLoopSpec& s) {
-  const double a = std::exp(-s.period * s.resistance / s.inductance);  // L = 0: a = 0
-  const double one_minus_p = -std::expm1(-s.bandwidth * s.period);
+  const double a = math::exp(-s.period * s.resistance / s.inductance);  // L = 0: a = 0
+  const double one_minus_p = -math::expm1(-s.bandwidth * s.period);
   PiParams<double> p;
   p.kp = s.resistance * one_minus_p / (1.0 - a);
   p.ki = s.resistance * one_minus_p / s.period;

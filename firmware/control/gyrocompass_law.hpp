@@ -20,6 +20,7 @@
 #include <cmath>
 
 #include "firmware/control/config_check.hpp"
+#include "firmware/math/deterministic_math.hpp"
 
 namespace gyrostab::firmware {
 
@@ -50,12 +51,12 @@ inline GyrocompassTorques gyrocompass_torques(const GyrocompassLawParams& p, dou
 // latitude φ [rad] (g [m/s²], R [m], ω^E [rad/s]).
 inline double schuler_tuned_pendulosity(double H, double latitude, double gravity, double radius,
                                         double earth_rate) {
-  return H * gravity / (radius * earth_rate * std::cos(latitude));
+  return H * gravity / (radius * earth_rate * math::cos(latitude));
 }
 
 // Damping f [N m/rad] for damping ratio ζ of (13.12) at latitude φ with total pendulous moment c.
 inline double gyrocompass_damping_for_ratio(double H, double c, double latitude, double zeta, double earth_rate) {
-  const double wh = earth_rate * std::cos(latitude);
+  const double wh = earth_rate * math::cos(latitude);
   return 2.0 * zeta * std::sqrt(wh * (wh + c / H)) * H;
 }
 

@@ -31,6 +31,7 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/drive_loops.hpp"
 #include "firmware/control/sampled_loop_limits.hpp"
+#include "firmware/math/deterministic_math.hpp"
 
 namespace gyrostab::firmware {
 
@@ -75,7 +76,7 @@ class ServoGyroRateLoop {
   }
 
   ServoGyroOutput step(const ServoGyroInputs& in) {
-    const double ff = p_.feedforward ? -p_.H * std::cos(in.beta) * in.alpha_rate : 0.0;
+    const double ff = p_.feedforward ? -p_.H * math::cos(in.beta) * in.alpha_rate : 0.0;
     const PiOutput<double> o = pi_step(pi_, state_, in.rate_reference, in.beta_rate, ff);
     return {o.value, o.saturated, o.valid};
   }
@@ -96,7 +97,7 @@ struct ServoGyroRate {
 // Ω that makes the gyroscopic reaction on axis 1 equal M1_demand: Ω = −M1_demand / (H cosβ) (14.42), with
 // |cosβ| floored at cos_beta_floor (keeping its sign). O(1).
 inline ServoGyroRate servo_gyro_rate_for_torque(const ServoGyroParams& p, double M1_demand, double beta) {
-  const double cb = std::cos(beta);
+  const double cb = math::cos(beta);
   const double mag = cb < 0.0 ? -cb : cb;
   ServoGyroRate r;
   r.limited = mag < p.cos_beta_floor;

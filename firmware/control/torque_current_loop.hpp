@@ -21,6 +21,7 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/drive_loops.hpp"
 #include "firmware/control/saturation.hpp"
+#include "firmware/math/deterministic_math.hpp"
 
 namespace gyrostab::firmware {
 
@@ -84,7 +85,7 @@ inline ConfigCheck check_torque_current_loop(const TorqueCurrentLoopParams& p, d
   if (!pos(p.current_limit_A) || !pos(p.voltage_limit_V)) {
     return ConfigCheck::refused("drive: current_limit and voltage_limit must be > 0");
   }
-  const double bw_max = std::log(4.0 / 3.0) / T;
+  const double bw_max = math::log(4.0 / 3.0) / T;
   if (!pos(p.bandwidth_rad_s) || !(p.bandwidth_rad_s <= bw_max)) {
     return ConfigCheck::refused(
         "drive: current-loop bandwidth must lie in (0, ln(4/3)/T_drive] (real poles with "

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "hil/can/frame_map.hpp"
@@ -47,7 +48,18 @@ class DeviceScene {
   // The plant may keep references into this scene: the scene outlives it.
   virtual std::unique_ptr<PlantPort> make_plant(const PlantOptions& options) const = 0;
   virtual std::unique_ptr<ControllerPort> make_controller() const = 0;
+  // The controller's configuration as the bytes of its Config struct: what `run --transport target` sends to
+  // the device's firmware image (firmware/target/pil_session.hpp). Empty: the device has no firmware image.
+  virtual std::vector<std::uint8_t> controller_config() const { return {}; }
 };
+
+// The bytes of a trivially copyable configuration struct (DeviceScene::controller_config).
+template <class Config>
+std::vector<std::uint8_t> config_bytes(const Config& c) {
+  static_assert(std::is_trivially_copyable_v<Config>, "a configuration travels to the target as its bytes");
+  const auto* p = reinterpret_cast<const std::uint8_t*>(&c);
+  return std::vector<std::uint8_t>(p, p + sizeof(Config));
+}
 
 struct DeviceDescriptor {
   std::string_view name;     // [scene] device

@@ -51,6 +51,7 @@ class DeviceSceneOf final : public DeviceScene {
   std::unique_ptr<ControllerPort> make_controller() const override {
     return make_controller_port<typename Traits::Controller>(s_->controller);
   }
+  std::vector<std::uint8_t> controller_config() const override { return config_bytes(s_->controller); }
 
  private:
   std::unique_ptr<Scene> s_;

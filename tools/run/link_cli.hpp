@@ -47,14 +47,75 @@ inline std::string parse_jitter(const std::string& text, TransportOptions& t) {
   return "";
 }
 
+// --target-fault KIND[:TICK[:COUNT]] (link_cli.hpp's help text lists the kinds).
+inline std::string parse_target_fault(const std::string& text, hil::TargetFaults& f) {
+  const std::size_t c1 = text.find(':');
+  const std::string kind = text.substr(0, c1);
+  if (kind == "config") {
+    if (c1 != std::string::npos) return "config takes no tick";
+    f.bad_config = true;
+    return "";
+  }
+  if (c1 == std::string::npos) return "expected KIND:TICK[:COUNT] or config";
+  const std::size_t c2 = text.find(':', c1 + 1);
+  char* end = nullptr;
+  const std::string tick_text = text.substr(c1 + 1, c2 == std::string::npos ? std::string::npos : c2 - c1 - 1);
+  const long long tick = std::strtoll(tick_text.c_str(), &end, 10);
+  if (tick_text.empty() || *end != '\0' || tick < 0) return "TICK must be an integer >= 0";
+  long long count = 1;
+  if (c2 != std::string::npos) {
+    const std::string count_text = text.substr(c2 + 1);
+    count = std::strtoll(count_text.c_str(), &end, 10);
+    if (count_text.empty() || *end != '\0' || count < 1) return "COUNT must be an integer >= 1";
+  }
+  if (kind == "corrupt") {
+    f.corrupt_from = tick;
+    f.corrupt_count = count;
+  } else if (kind == "stale") {
+    f.stale_from = tick;
+    f.stale_count = count;
+  } else if (kind == "skip") {
+    f.skip_from = tick;
+    f.skip_count = count;
+  } else if (kind == "freeze" && c2 == std::string::npos) {
+    f.freeze_at = tick;
+  } else if (kind == "kill" && c2 == std::string::npos) {
+    f.kill_at = tick;
+  } else {
+    return "unknown kind '" + kind + "' (corrupt, stale, skip take TICK:COUNT; freeze, kill take TICK; config)";
+  }
+  return "";
+}
+
 inline void add_link_options(CLI::App* cmd, RunRequest& req, LinkSide side) {
   TransportOptions& t = req.transport;
   if (side == LinkSide::kRun) {
     cmd->add_option(
            "--transport", t.transport,
            "inproc (default): plant and firmware in this process; lcm: plant and controller as two child "
-           "processes over LCM, one report; can: the same over CAN FD (SocketCAN, --can-if)")
-        ->check(CLI::IsMember({"inproc", "lcm", "can"}));
+           "processes over LCM, one report; can: the same over CAN FD (SocketCAN, --can-if); target: the "
+           "device's firmware image on an emulated Cortex-M7 (QEMU), the plant here, in lockstep (docs/pil.md)")
+        ->check(CLI::IsMember({"inproc", "lcm", "can", "target"}));
+    cmd->add_option("--target-image", t.target_image,
+                    "--transport target: run this controller image (default: the build's image of the scene's "
+                    "device)")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--target-link", t.target_link,
+                    "--transport target: fifo (semihosting on two FIFOs, the fast lockstep channel; default) or "
+                    "uart (the board's CMSDK UART0: a few hundred ticks per second in QEMU)")
+        ->check(CLI::IsMember({"fifo", "uart"}));
+    cmd->add_option("--qemu", t.qemu, "--transport target: the emulator (default qemu-system-arm)");
+    cmd->add_option_function<std::string>(
+        "--target-fault",
+        [&t](const std::string& v) {
+          if (const std::string e = parse_target_fault(v, t.target_faults); !e.empty()) {
+            throw CLI::ValidationError("--target-fault", e);
+          }
+        },
+        "--transport target, fault injection (repeatable): corrupt:TICK:COUNT, stale:TICK:COUNT, "
+        "skip:TICK:COUNT (a changed byte, a repeated frame, a skipped alive counter on the sensor frames of "
+        "those ticks), freeze:TICK, kill:TICK (stop or kill the emulator), config (a configuration the "
+        "controller must refuse)");
   }
   // CAN FD over SocketCAN (docs/can.md). For plant / controller, --can-if selects CAN instead of
   // LCM.

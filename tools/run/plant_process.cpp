@@ -37,6 +37,7 @@
 #include "hil/link/memory_bus.hpp"
 #include "hil/rt/deadline_pacer.hpp"
 #include "hil/rt/rt_setup.hpp"
+#include "hil/target/target_endpoint.hpp"
 #include "tools/log/stop_signal.hpp"
 #include "tools/run/bus_log_sink.hpp"
 #include "tools/run/can_link_setup.hpp"
@@ -48,6 +49,7 @@
 #include "tools/run/link_stats.hpp"
 #include "tools/run/run_modes.hpp"
 #include "tools/run/run_output.hpp"
+#include "tools/run/target_link_setup.hpp"
 
 namespace gyrostab::tools {
 namespace {
@@ -231,6 +233,10 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
     if (logging && outcome.interrupted && link.stop_signal == 0) link.stop_signal = stop_signal_received();
     if (req.after_loop) req.after_loop();
   }
+  // The target's execution profile, then the emulator is ended (a lost one is not waited for).
+  if constexpr (std::is_same_v<Transport, hil::TargetBus>) {
+    hil::finish_target_session(transport, hil::monotonic_ns() + (link.peer_lost ? 0 : s.timeout_ns));
+  }
   if (logging) {
     logged.stop_signal = link.stop_signal;
     log->close(outcome, logged,
@@ -243,7 +249,12 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   l["role"] = "plant";
   l["counters"] = counters_json(ep.counters());
   l["session"] = session_json(ep);
-  if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level
+  if constexpr (std::is_same_v<Transport, hil::TargetBus>) {
+    l["target"] = hil::target_link_json(transport);
+    report["timing"]["target"] = hil::target_timing_json(transport, loop.tick_ns);
+  } else if constexpr (requires { ep.report_extra(); }) {
+    l["can"] = ep.report_extra();  // CAN level
+  }
   l["actuator_limits"] = limits.from_scene
                              ? nlohmann::json{{"torque_Nm", {limits.torque_Nm[0], limits.torque_Nm[1]}},
                                               {"voltage_V", {limits.voltage_V[0], limits.voltage_V[1]}},
@@ -255,6 +266,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
     happened = "controller lost: no actuator frame for tick " + std::to_string(link.lost_at_tick) + " within " +
                std::to_string(link.silent_ns / 1'000'000) + " ms; drives at zero torque from tick " +
                std::to_string(link.zero_torque_from_tick) + refused_hint(ep);
+    if constexpr (requires { ep.peer_state(); }) happened += "; " + ep.peer_state();
     l["peer"] = {{"lost", true},
                  {"lost_at_tick", link.lost_at_tick},
                  {"silent_ms", static_cast<double>(link.silent_ns) * 1e-6},
@@ -314,6 +326,13 @@ int run_plant_process(const DeviceScene& scene, const RunRequest& req) {
   if (t.real_time) {
     rt = hil::setup_real_time(t.rt_priority);
     std::fprintf(stderr, "gyrostab plant: %s\n", rt.message.c_str());
+  }
+  if (t.transport == "target") {  // the firmware image on the emulated Cortex-M7 (target_link_setup.hpp)
+    auto bus = std::make_unique<hil::TargetBus>();
+    RunRequest target_req = req;
+    nlohmann::json info;
+    if (const int rc = open_target_link(scene, target_req, *bus, info); rc != 0) return rc;
+    return run_plant_over(scene, target_req, *bus, info, nullptr);
   }
   if (!t.can_if.empty()) {  // CAN FD over SocketCAN (tools/run/can_link_setup.hpp, docs/can.md)
     auto bus = std::make_unique<can::CanBusTransport>();

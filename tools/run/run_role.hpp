@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <string>
 
+#include "hil/target/target_faults.hpp"
+
 namespace gyrostab::hil {
 struct MemoryBus;
 }
@@ -56,6 +58,11 @@ struct TransportOptions {
   // Sessions and authentication (tools/run/link_identity.hpp, docs/transport.md):
   std::string key_file;               // the link key: every frame carries a MAC (empty: session binding only)
   std::uint64_t session{0};           // the session both ends use (0: the plant draws one, the controller binds)
+  // Processor in the loop (`run --transport target`, tools/run/target_link_setup.hpp, docs/pil.md):
+  std::string target_image;           // the controller image (empty: the build's image of the scene's device)
+  std::string target_link{"fifo"};    // fifo (semihosting, fast) or uart (the board's UART0)
+  std::string qemu{"qemu-system-arm"};  // the emulator
+  hil::TargetFaults target_faults;    // --target-fault
 };
 
 }  // namespace gyrostab::tools

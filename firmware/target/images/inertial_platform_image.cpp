@@ -1,8 +1,8 @@
-// The inertial platform controller (firmware/app/inertial_platform_controller.hpp) as a Cortex-M7 image (controller_image.hpp).
+// The inertial platform controller (firmware/app/inertial_platform_controller.hpp) as a Cortex-M7 processor-in-the-loop image (pil_session.hpp).
 #include "firmware/app/inertial_platform_controller.hpp"
-#include "firmware/target/controller_image.hpp"
+#include "firmware/target/pil_session.hpp"
 
 extern "C" [[noreturn]] void firmware_main() {
-  using Controller = gyrostab::firmware::BasicInertialPlatformController<gyrostab::firmware::cortex_m4::DwtCycleClock>;
-  gyrostab::firmware::target::run_controller_image<Controller>(Controller::Config{});
+  using Controller = gyrostab::firmware::BasicInertialPlatformController<gyrostab::firmware::target::InstructionClock>;
+  gyrostab::firmware::target::run_pil_image<Controller>("inertial_platform");
 }

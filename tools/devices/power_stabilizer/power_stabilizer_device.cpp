@@ -37,6 +37,7 @@ class PowerStabilizerDeviceScene final : public DeviceScene {
   std::unique_ptr<ControllerPort> make_controller() const override {
     return make_controller_port<Controller>(s_->controller);
   }
+  std::vector<std::uint8_t> controller_config() const override { return config_bytes(s_->controller); }
 
  private:
   std::unique_ptr<PowerStabilizerScene> s_;
