@@ -122,6 +122,16 @@ int main(int argc, char** argv) {
   replay_cmd->add_option("log", replay.transport.replay_log, "bus log (gyrostab run --log)")->required();
   replay_cmd->add_option("--scene", replay.scene_path, "use this scene instead of the one recorded in the log");
   replay_cmd->add_flag("--real-time", replay.transport.replay_real_time, "feed frames at the scene's tick rate");
+  bool replay_target = false;
+  replay_cmd->add_flag("--target", replay_target,
+                       "replay into the device's firmware image on the emulated Cortex-M7 (QEMU, docs/pil.md) "
+                       "instead of the host build of the controller");
+  replay_cmd->add_option("--target-image", replay.transport.target_image, "with --target: run this image")
+      ->check(CLI::ExistingFile);
+  replay_cmd->add_option("--qemu", replay.transport.qemu, "with --target: the emulator (default qemu-system-arm)");
+  replay_cmd->add_option("--timeout-ms", replay.transport.timeout_ms,
+                         "with --target: the image is lost after this long without an answer (default 1000)")
+      ->check(CLI::PositiveNumber);
   replay_cmd->add_flag("--resimulate", resimulate,
                        "re-simulate the plant open loop from the recorded actuator frames and check every sensor "
                        "frame (exit 3 if the plant diverges where the run did not)");
@@ -169,6 +179,11 @@ int main(int argc, char** argv) {
   if (accuracy_cmd->parsed()) return gyrostab::tools::run_accuracy(accuracy);
   if (replay_cmd->parsed()) {
     if (resimulate) replay.role = gyrostab::tools::Role::kResimulate;
+    if (replay_target && resimulate) {
+      std::fprintf(stderr, "gyrostab replay: --target replays into the controller; --resimulate has no controller\n");
+      return 2;
+    }
+    if (replay_target) replay.transport.transport = "target";
     replay.write_outputs = resimulate && replay_out->count() > 0;
     return gyrostab::tools::replay_log(replay);
   }

@@ -30,6 +30,24 @@ int poll_ms(std::int64_t deadline_ns) {
 
 std::string describe_errno(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
 
+// The last line QEMU printed (at most 160 characters), or "".
+std::string tail_of(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return "";
+  char buf[2048];
+  const off_t size = ::lseek(fd, 0, SEEK_END);
+  const off_t from = size > static_cast<off_t>(sizeof buf) ? size - static_cast<off_t>(sizeof buf) : 0;
+  const ssize_t n = ::pread(fd, buf, sizeof buf, from);
+  ::close(fd);
+  if (n <= 0) return "";
+  std::string text(buf, static_cast<std::size_t>(n));
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
+  const std::size_t nl = text.find_last_of('\n');
+  std::string line = nl == std::string::npos ? text : text.substr(nl + 1);
+  if (line.size() > 160) line = line.substr(0, 160) + "...";
+  return line;
+}
+
 }  // namespace
 
 bool QemuTarget::start(const QemuLaunch& launch, std::string& error) {
@@ -91,8 +109,12 @@ bool QemuTarget::start(const QemuLaunch& launch, std::string& error) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addchdir_np(&actions, dir_.c_str());
-  // QEMU's own stdin must not be the terminal (-nographic would read it as the serial console's input).
+  // QEMU's own stdin must not be the terminal (-nographic would read it as the serial console's input); what it
+  // prints (a lockup's register dump, a kernel it cannot load) goes to qemu.log, quoted when the target is lost.
+  log_path_ = dir_ + "/qemu.log";
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, log_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
   const int rc = posix_spawnp(&pid_, launch.qemu.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) {
@@ -157,6 +179,8 @@ void QemuTarget::note_status(int wstatus) {
   }
 }
 
+std::string QemuTarget::last_words() const { return log_path_.empty() ? last_words_ : tail_of(log_path_); }
+
 bool QemuTarget::exited() {
   if (pid_ < 0) return true;
   if (reaped_) return true;
@@ -196,6 +220,11 @@ void QemuTarget::close() {
     *fd = -1;
   }
   for (const std::string& f : fifos_) ::unlink(f.c_str());
+  if (!log_path_.empty()) {
+    last_words_ = tail_of(log_path_);
+    ::unlink(log_path_.c_str());
+    log_path_.clear();
+  }
   fifos_.clear();
   if (!dir_.empty()) ::rmdir(dir_.c_str());
   dir_.clear();

@@ -5,7 +5,8 @@
 //                   -serial pipe:uart | -serial none
 // started with posix_spawn (an argument vector, no shell) in a private directory made with mkdtemp under
 // $TMPDIR, which holds the link's two FIFOs (the image opens them by relative name through semihosting, or
-// QEMU connects UART0 to uart.in / uart.out) and nothing else; it is removed when the link closes. The host
+// QEMU connects UART0 to uart.in / uart.out) and what QEMU prints (qemu.log), nothing else; it is removed when
+// the link closes. The host
 // opens its ends O_RDWR, so neither open blocks on the other side and a write never raises SIGPIPE.
 // The emulator's death is watched through a pidfd: a read that would wait for a dead emulator returns at once
 // with the exit status. close() ends the emulator (SIGKILL: QEMU ignores SIGTERM while the guest blocks in a
@@ -52,6 +53,8 @@ class QemuTarget {
   // SIGKILL").
   bool exited();
   const std::string& exit_text() const { return exit_text_; }
+  // The last line the emulator printed ("" if none), e.g. why it could not load the image.
+  std::string last_words() const;
   int exit_status() const { return exit_status_; }  // -1: killed by a signal or still running
 
   // Waits until deadline_ns for the emulator to exit by itself; true if it did.
@@ -77,6 +80,8 @@ class QemuTarget {
   std::string dir_;
   std::vector<std::string> fifos_;
   std::string command_line_;
+  std::string log_path_;
+  std::string last_words_;
   std::string exit_text_;
   int exit_status_{-1};
   bool reaped_{false};

@@ -61,9 +61,10 @@ struct TargetBus {
     return !bytes.empty() && qemu.write(bytes.data(), bytes.size(), monotonic_ns() + write_timeout_ns);
   }
 
-  // Waits until deadline_ns for one accepted frame. kTimeout also when the emulator has exited (after the
-  // deadline: a dead peer is a silent one); kError only when reading fails.
-  RxStatus next(std::int64_t deadline_ns, firmware::link::TargetFrameView& f) {
+  // Waits until deadline_ns for one accepted frame. When the emulator has exited: kTimeout after the deadline
+  // (a dead peer is a silent one to the loop), or kError at once with `dead_is_error` (the handshake);
+  // kError also when reading fails.
+  RxStatus next(std::int64_t deadline_ns, firmware::link::TargetFrameView& f, bool dead_is_error = false) {
     for (;;) {
       while (rx_pos < rx_have) {
         std::span<const std::uint8_t> wire;
@@ -78,6 +79,7 @@ struct TargetBus {
           break;
         case ByteWait::kTimeout: return RxStatus::kTimeout;
         case ByteWait::kExited: {
+          if (dead_is_error) return RxStatus::kError;
           if (deadline_ns != kNoDeadline) {
             const timespec ts = to_timespec(deadline_ns);
             while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
@@ -96,8 +98,10 @@ struct TargetBus {
                                         " (fault injection); it " + (qemu.exited() ? qemu.exit_text() : "still runs");
     if (injected.frozen_at >= 0) return "the emulator was stopped before tick " + std::to_string(injected.frozen_at) +
                                         " (fault injection): it hung";
-    if (qemu.exited()) return "the emulator " + qemu.exit_text();
-    return "the emulator still runs but sent no accepted frame";
+    const std::string said = qemu.last_words();
+    const std::string quote = said.empty() ? "" : " (it said: " + said + ")";
+    if (qemu.exited()) return "the emulator " + qemu.exit_text() + quote;
+    return "the emulator still runs but sent no accepted frame" + quote;
   }
 };
 

@@ -13,7 +13,7 @@ using firmware::link::TargetFrameView;
 // Waits for one accepted frame of `kind` until deadline_ns (others are counted as unexpected and skipped).
 bool await(TargetBus& bus, TargetFrameKind kind, std::int64_t deadline_ns, TargetFrameView& f) {
   for (;;) {
-    if (bus.next(deadline_ns, f) != RxStatus::kMessage) return false;
+    if (bus.next(deadline_ns, f, /*dead_is_error=*/true) != RxStatus::kMessage) return false;
     if (f.kind == kind) return true;
   }
 }

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "tools/run/link_identity.hpp"
 #include "tools/run/run_output.hpp"
@@ -105,11 +106,13 @@ inline void add_link_options(CLI::App* cmd, RunRequest& req, LinkSide side) {
                     "uart (the board's CMSDK UART0: a few hundred ticks per second in QEMU)")
         ->check(CLI::IsMember({"fifo", "uart"}));
     cmd->add_option("--qemu", t.qemu, "--transport target: the emulator (default qemu-system-arm)");
-    cmd->add_option_function<std::string>(
+    cmd->add_option_function<std::vector<std::string>>(
         "--target-fault",
-        [&t](const std::string& v) {
-          if (const std::string e = parse_target_fault(v, t.target_faults); !e.empty()) {
-            throw CLI::ValidationError("--target-fault", e);
+        [&t](const std::vector<std::string>& all) {
+          for (const std::string& v : all) {
+            if (const std::string e = parse_target_fault(v, t.target_faults); !e.empty()) {
+              throw CLI::ValidationError("--target-fault", e);
+            }
           }
         },
         "--transport target, fault injection (repeatable): corrupt:TICK:COUNT, stale:TICK:COUNT, "
