@@ -200,10 +200,10 @@ int main(int argc, char** argv) {
   }
   if (run_cmd->parsed()) {
     const gyrostab::tools::TransportOptions& t = run.transport;
-    const bool target_options = !t.target_image.empty() || t.target_link != "fifo" ||
+    const bool target_options = !t.target_image.empty() || t.target_link != "fifo" || t.target_core != "m7" ||
                                 t.qemu != gyrostab::tools::TransportOptions{}.qemu || t.target_faults.any();
     if (t.transport != "target" && target_options) {
-      std::fprintf(stderr, "gyrostab run: --target-image, --target-link, --qemu and --target-fault need --transport target\n");
+      std::fprintf(stderr, "gyrostab run: --target-image, --target-link, --target-core, --qemu and --target-fault need --transport target\n");
       return 2;
     }
     if (t.transport == "target") {

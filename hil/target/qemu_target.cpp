@@ -84,9 +84,9 @@ bool QemuTarget::start(const QemuLaunch& launch, std::string& error) {
   }
   std::vector<std::string> args{launch.qemu,
                                 "-M",
-                                "mps2-an500",
+                                launch.machine,
                                 "-cpu",
-                                "cortex-m7",
+                                launch.cpu,
                                 "-nographic",
                                 "-monitor",
                                 "none",

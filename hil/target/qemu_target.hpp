@@ -1,13 +1,13 @@
 // The emulated target: one QEMU process running a controller image (docs/pil.md), and the byte stream to it.
-//   qemu-system-arm -M mps2-an500 -cpu cortex-m7 -nographic -monitor none -kernel IMAGE
+//   qemu-system-arm -M mps2-an500 -cpu cortex-m7        (mps2-an386 -cpu cortex-m4: the Cortex-M4F build)
+//                   -nographic -monitor none -kernel IMAGE
 //                   -icount shift=0,sleep=off          deterministic: 1 instruction = 1 ns of virtual time
 //                   -semihosting-config enable=on,target=native,arg=DEVICE,arg=fifo|uart
 //                   -serial pipe:uart | -serial none
 // started with posix_spawn (an argument vector, no shell) in a private directory made with mkdtemp under
 // $TMPDIR, which holds the link's two FIFOs (the image opens them by relative name through semihosting, or
 // QEMU connects UART0 to uart.in / uart.out) and what QEMU prints (qemu.log), nothing else; it is removed when
-// the link closes. The host
-// opens its ends O_RDWR, so neither open blocks on the other side and a write never raises SIGPIPE.
+// the link closes. The host opens its ends O_RDWR, so neither open blocks on the other side and a write never raises SIGPIPE.
 // The emulator's death is watched through a pidfd: a read that would wait for a dead emulator returns at once
 // with the exit status. close() ends the emulator (SIGKILL: QEMU ignores SIGTERM while the guest blocks in a
 // semihosting read), reaps it and removes the directory.
@@ -24,6 +24,8 @@ namespace gyrostab::hil {
 
 struct QemuLaunch {
   std::string qemu{"qemu-system-arm"};
+  std::string machine{"mps2-an500"};  // mps2-an500 (Cortex-M7) or mps2-an386 (Cortex-M4F)
+  std::string cpu{"cortex-m7"};
   std::string image;                // the controller image (ELF)
   std::string device;               // passed to the image as its first argument
   bool uart{false};                 // the board's UART instead of semihosting FIFOs

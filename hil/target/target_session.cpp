@@ -111,12 +111,14 @@ nlohmann::json target_timing_json(const TargetBus& bus, std::int64_t tick_ns) {
   const double tick_s = static_cast<double>(tick_ns) * 1e-9;
   const double res = p.clock_ns_per_count;
   return {{"what_is_counted",
-           "instructions executed on QEMU's Cortex-M7 (mps2-an500) under -icount shift=0 (1 instruction = 1 ns "
+           "instructions executed on QEMU's " + bus.launch.machine + " under -icount shift=0 (1 instruction = 1 ns "
            "of virtual time), read from SysTick in steps of " +
                std::to_string(p.clock_ns_per_count) +
                "; the fractions assume one instruction per core cycle (QEMU has no DWT cycle counter and no "
                "pipeline model)"},
-          {"core", "Cortex-M7, FPv5-D16 (double-precision FPU), image built -Os"},
+          {"core", bus.launch.cpu == "cortex-m4"
+                       ? "Cortex-M4F, FPv4-SP-D16 (single-precision FPU: double in software), image built -Os"
+                       : "Cortex-M7, FPv5-D16 (double-precision FPU), image built -Os"},
           {"base_tick_s", tick_s},
           {"ticks", p.ticks},
           {"step", task_json(p.step, tick_s, res)},

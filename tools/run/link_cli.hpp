@@ -105,6 +105,10 @@ inline void add_link_options(CLI::App* cmd, RunRequest& req, LinkSide side) {
                     "--transport target: fifo (semihosting on two FIFOs, the fast lockstep channel; default) or "
                     "uart (the board's CMSDK UART0: a few hundred ticks per second in QEMU)")
         ->check(CLI::IsMember({"fifo", "uart"}));
+    cmd->add_option("--target-core", t.target_core,
+                    "--transport target: m7 (Cortex-M7 with the double-precision FPU, QEMU mps2-an500; default) "
+                    "or m4f (the Cortex-M4F build, single-precision FPU, double in software; mps2-an386)")
+        ->check(CLI::IsMember({"m7", "m4f"}));
     cmd->add_option("--qemu", t.qemu, "--transport target: the emulator (default qemu-system-arm)");
     cmd->add_option_function<std::vector<std::string>>(
         "--target-fault",

@@ -61,6 +61,7 @@ struct TransportOptions {
   // Processor in the loop (`run --transport target`, tools/run/target_link_setup.hpp, docs/pil.md):
   std::string target_image;           // the controller image (empty: the build's image of the scene's device)
   std::string target_link{"fifo"};    // fifo (semihosting, fast) or uart (the board's UART0)
+  std::string target_core{"m7"};      // m7 (Cortex-M7, FPv5-D16) or m4f (Cortex-M4F: double in software)
   std::string qemu{"qemu-system-arm"};  // the emulator
   hil::TargetFaults target_faults;    // --target-fault
 };

@@ -28,12 +28,13 @@
 
 namespace gyrostab::tools {
 
-// The image of a device: --target-image, else $GYROSTAB_IMAGE_DIR/<device>.elf, else the build's.
+// The image of a device: --target-image, else $GYROSTAB_IMAGE_DIR/<core>/<device>.elf (core m7 or m4), else the
+// build's (build/arm/<core>/).
 inline std::string target_image_path(const std::string& device, const TransportOptions& t) {
   if (!t.target_image.empty()) return t.target_image;
   const char* env = std::getenv("GYROSTAB_IMAGE_DIR");
   const std::string dir = env != nullptr && *env != '\0' ? env : GYROSTAB_IMAGE_DIR;
-  return dir + "/" + device + ".elf";
+  return dir + (t.target_core == "m4f" ? "/m4/" : "/m7/") + device + ".elf";
 }
 
 inline int open_target_link(const DeviceScene& scene, RunRequest& req, hil::TargetBus& bus, nlohmann::json& info) {
@@ -74,6 +75,10 @@ inline int open_target_link(const DeviceScene& scene, RunRequest& req, hil::Targ
   bus.launch.image = image;
   bus.launch.device = loop.device;
   bus.launch.uart = t.target_link == "uart";
+  if (t.target_core == "m4f") {
+    bus.launch.machine = "mps2-an386";
+    bus.launch.cpu = "cortex-m4";
+  }
   bus.faults = t.target_faults;
   const LinkSettings s = link_settings(loop, t);
   bus.write_timeout_ns = s.timeout_ns;
@@ -96,6 +101,7 @@ inline int open_target_link(const DeviceScene& scene, RunRequest& req, hil::Targ
   info = {{"transport", "target"},
           {"image", image},
           {"channel", bus.launch.uart ? "uart" : "fifo"},
+          {"core", t.target_core},
           {"timeout_ms", t.timeout_ms},
           {"start_timeout_ms", t.start_timeout_ms}};
   return 0;
