@@ -137,25 +137,31 @@ struct ExpReduced {
   double tail;
 };
 
+// (e^x − 1 − x) / x² = 1/2! + x/3! + … + x^12/14!, Horner; for |x| ≤ ln2/2 the next term is below 2^-61
+// relative to x. One polynomial for exp's reduced argument and expm1's small arguments.
+constexpr double expm1_taylor_q(double x) {
+  return 0x1p-1 +
+         x * (0x1.5555555555555p-3 +
+              x * (0x1.5555555555555p-5 +
+                   x * (0x1.1111111111111p-7 +
+                        x * (0x1.6c16c16c16c17p-10 +
+                             x * (0x1.a01a01a01a01ap-13 +
+                                  x * (0x1.a01a01a01a01ap-16 +
+                                       x * (0x1.71de3a556c734p-19 +
+                                            x * (0x1.27e4fb7789f5cp-22 +
+                                                 x * (0x1.ae64567f544e4p-26 +
+                                                      x * (0x1.1eed8eff8d898p-29 +
+                                                           x * (0x1.6124613a86d09p-33 + x * 0x1.93974a8c07c9dp-37)))))))))));
+}
+
 constexpr ExpReduced exp_reduce(double x) {
   const double kd = round_to_int(x * kInvLn2);
   const double hi = x - kd * kLn2Hi;  // exact: kd·kLn2Hi is exact and close to x
   const double lo = kd * kLn2Lo;
   const double r = hi - lo;
   const double c = (hi - r) - lo;  // what the rounding of r lost
-  // e^r − 1 − r = r²·(1/2! + r/3! + … + r^11/13!); |r| ≤ 0.347, the next term is below 2^-57 relative.
-  const double q =
-      0x1p-1 +
-      r * (0x1.5555555555555p-3 +
-           r * (0x1.5555555555555p-5 +
-                r * (0x1.1111111111111p-7 +
-                     r * (0x1.6c16c16c16c17p-10 +
-                          r * (0x1.a01a01a01a01ap-13 +
-                               r * (0x1.a01a01a01a01ap-16 +
-                                    r * (0x1.71de3a556c734p-19 +
-                                         r * (0x1.27e4fb7789f5cp-22 +
-                                              r * (0x1.ae64567f544e4p-26 +
-                                                   r * (0x1.1eed8eff8d898p-29 + r * 0x1.6124613a86d09p-33))))))))));
+  // e^r − 1 − r = r²·q(r); |r| ≤ 0.347.
+  const double q = expm1_taylor_q(r);
   // e^(r + c) − 1 ≈ (e^r − 1) + c·(1 + r): c is ≤ half an ulp of r, so first order suffices.
   const double tail = r * r * q + (c + c * r);
   return {static_cast<int>(kd), r, tail};
@@ -325,21 +331,7 @@ constexpr double expm1(double x) {
   const double ax = detail::abs(x);
   if (ax < 0x1p-54) return x;  // x²/2 below half an ulp of x; keeps ±0
   if (ax <= detail::kHalfLn2) {
-    // x²·(1/2! + x/3! + … + x^12/14!); next term < 2^-61 relative to x.
-    const double q =
-        0x1p-1 +
-        x * (0x1.5555555555555p-3 +
-             x * (0x1.5555555555555p-5 +
-                  x * (0x1.1111111111111p-7 +
-                       x * (0x1.6c16c16c16c17p-10 +
-                            x * (0x1.a01a01a01a01ap-13 +
-                                 x * (0x1.a01a01a01a01ap-16 +
-                                      x * (0x1.71de3a556c734p-19 +
-                                           x * (0x1.27e4fb7789f5cp-22 +
-                                                x * (0x1.ae64567f544e4p-26 +
-                                                     x * (0x1.1eed8eff8d898p-29 +
-                                                          x * (0x1.6124613a86d09p-33 +
-                                                               x * 0x1.93974a8c07c9dp-37)))))))))));
+    const double q = detail::expm1_taylor_q(x);
     return x + (x * x) * q;
   }
   const detail::ExpReduced red = detail::exp_reduce(x);
