@@ -64,11 +64,11 @@ struct CanBusTransport {
 namespace gyrostab::hil {
 
 template <>
-class FrameEndpoint<can::CanBusTransport> {
+class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
  public:
   FrameEndpoint(can::CanBusTransport& bus, const GuardConfig& guard)
-      : bus_(bus),
-        guard_(can::can_guard_config(guard)),
+      : EndpointBook(can::can_guard_config(guard)),
+        bus_(bus),
         sensor_tx_(can::Direction::kSensor, bus.nodes),
         actuator_tx_(can::Direction::kActuator, bus.nodes),
         sensor_rx_(can::Direction::kSensor, bus.nodes),
@@ -100,20 +100,12 @@ class FrameEndpoint<can::CanBusTransport> {
     return receive_set(actuator_rx_, deadline_ns, out, sim_time_us);
   }
 
-  // Fault injection (--loss), as for the other transports (frame_endpoint.hpp): a whole set per draw.
-  void inject_loss(double p, std::uint64_t seed, std::uint64_t stream) {
-    loss_ = p;
-    loss_rng_ = random::SeededRng(seed, stream);
-  }
+  // --loss (endpoint_book.hpp) draws once per set: a whole set is lost on the way.
 
   // Binds to the peer of the set last returned by receive() (the handshake).
   void bind_to_last() { guard_.bind(last_rx_); }
   // The envelope of the set last returned by receive().
   const LinkEnvelope& last_envelope() const { return last_rx_; }
-  const LinkGuard& guard() const { return guard_; }
-
-  LinkCounters& counters() { return counters_; }
-  const LinkCounters& counters() const { return counters_; }
   const can::RxCounters& sensor_counters() const { return sensor_rx_.counters(); }
   const can::RxCounters& actuator_counters() const { return actuator_rx_.counters(); }
   bool fatal() const { return fatal_; }
@@ -193,10 +185,7 @@ class FrameEndpoint<can::CanBusTransport> {
     }
     can::seal(std::span<can::CanFrame>(tx_.data(), n), guard_);
     last_send_ns_ = monotonic_ns();
-    if (loss_ > 0.0 && loss_rng_.uniform() < loss_) {
-      ++counters_.lost_by_fault;  // the whole set gone on the way (fault injection)
-      return true;
-    }
+    if (lost_on_the_way()) return true;  // the whole set gone on the way (fault injection)
     const std::int64_t deadline = last_send_ns_ + bus_.send_timeout_ns;
     bool ok = true;
     for (std::size_t i = 0; i < n; ++i) {
@@ -248,10 +237,7 @@ class FrameEndpoint<can::CanBusTransport> {
   }
 
   can::CanBusTransport& bus_;
-  LinkGuard guard_;
   LinkEnvelope last_rx_{};
-  double loss_{0.0};
-  random::SeededRng loss_rng_{0};
   can::FrameEncoder sensor_tx_, actuator_tx_;
   can::SetAssembler sensor_rx_, actuator_rx_;
   std::array<can::CanFrame, can::kMaxMessagesPerDirection> tx_{};
@@ -261,7 +247,6 @@ class FrameEndpoint<can::CanBusTransport> {
   Last last_kind_{Last::kNone};
   std::int64_t last_sim_us_{0};
   std::int64_t last_send_ns_{0};
-  LinkCounters counters_{};
   bool fatal_{false};
   std::string fatal_message_;
 };

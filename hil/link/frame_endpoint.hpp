@@ -13,6 +13,7 @@
 #include <span>
 
 #include "hil/lcm/frame_codec.hpp"
+#include "hil/link/endpoint_book.hpp"
 #include "hil/link/frame_transport.hpp"
 #include "hil/link/link_guard.hpp"
 #include "hil/link/link_counters.hpp"
@@ -31,9 +32,9 @@ inline GuardConfig controller_guard(std::uint64_t own_id, std::uint64_t session,
 }
 
 template <class Transport>
-class FrameEndpoint {
+class FrameEndpoint : public EndpointBook {
  public:
-  FrameEndpoint(Transport& transport, const GuardConfig& guard) : transport_(transport), guard_(guard) {}
+  FrameEndpoint(Transport& transport, const GuardConfig& guard) : EndpointBook(guard), transport_(transport) {}
 
   // Encodes, secures and publishes `f`; the frame's bytes are kept for resend(). false: encoding or the
   // transport failed.
@@ -93,17 +94,6 @@ class FrameEndpoint {
   void bind_to_last() { guard_.bind(last_rx_); }
   // The envelope of the frame last returned by receive().
   const LinkEnvelope& last_envelope() const { return last_rx_; }
-  const LinkGuard& guard() const { return guard_; }
-
-  LinkCounters& counters() { return counters_; }
-  const LinkCounters& counters() const { return counters_; }
-
-  // Fault injection (--loss): every frame this end sends, resends included, is lost on the way with
-  // probability p, drawn from its own seeded stream (a rerun loses the same frames in the same order).
-  void inject_loss(double p, std::uint64_t seed, std::uint64_t stream) {
-    loss_ = p;
-    loss_rng_ = random::SeededRng(seed, stream);
-  }
 
  private:
   bool secure_and_publish() {
@@ -114,10 +104,7 @@ class FrameEndpoint {
     return publish_last();
   }
   bool publish_last() {
-    if (loss_ > 0.0 && loss_rng_.uniform() < loss_) {
-      ++counters_.lost_by_fault;
-      return true;  // gone on the way: the sender cannot tell
-    }
+    if (lost_on_the_way()) return true;
     if (!transport_.publish(tx_.data(), last_size_)) {
       ++counters_.send_errors;
       return false;
@@ -129,13 +116,9 @@ class FrameEndpoint {
   static constexpr int kTxBytes =
       kSensorEncodedSize > kActuatorEncodedSize ? kSensorEncodedSize : kActuatorEncodedSize;
   Transport& transport_;
-  LinkGuard guard_;
   LinkEnvelope last_rx_{};
-  double loss_{0.0};
-  random::SeededRng loss_rng_{0};
   std::array<std::uint8_t, kTxBytes> tx_{};
   int last_size_{0};
-  LinkCounters counters_{};
 };
 
 }  // namespace gyrostab::hil

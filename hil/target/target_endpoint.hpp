@@ -121,9 +121,9 @@ nlohmann::json target_timing_json(const TargetBus& bus, std::int64_t tick_ns);
 nlohmann::json target_link_json(TargetBus& bus);
 
 template <>
-class FrameEndpoint<TargetBus> {
+class FrameEndpoint<TargetBus> : public EndpointBook {
  public:
-  FrameEndpoint(TargetBus& bus, const GuardConfig& guard) : bus_(bus), guard_(guard) {
+  FrameEndpoint(TargetBus& bus, const GuardConfig& guard) : EndpointBook(guard), bus_(bus) {
     guard_.bind(LinkEnvelope{bus.image_sender, guard.session, 0, 0});
   }
 
@@ -171,16 +171,7 @@ class FrameEndpoint<TargetBus> {
     }
   }
 
-  void bind_to_last() {}
-  const LinkGuard& guard() const { return guard_; }
-  LinkCounters& counters() { return counters_; }
-  const LinkCounters& counters() const { return counters_; }
-
-  // --loss: each transmission is lost with probability p (the lockstep resend recovers it).
-  void inject_loss(double p, std::uint64_t seed, std::uint64_t stream) {
-    loss_ = p;
-    loss_rng_ = random::SeededRng(seed, stream);
-  }
+  void bind_to_last() {}  // bound in the handshake (open_target_session)
 
   nlohmann::json report_extra() const { return nlohmann::json::object(); }
   std::string peer_state() { return bus_.peer_state(); }
@@ -219,10 +210,7 @@ class FrameEndpoint<TargetBus> {
       ++bus_.injected.corrupted;
       ++counters_.corrupted_by_fault;
     }
-    if (loss_ > 0.0 && loss_rng_.uniform() < loss_) {
-      ++counters_.lost_by_fault;
-      return true;
-    }
+    if (lost_on_the_way()) return true;  // --loss: the lockstep resend recovers it
     if (!bus_.write(bytes)) {
       ++counters_.send_errors;
       return false;
@@ -232,14 +220,10 @@ class FrameEndpoint<TargetBus> {
   }
 
   TargetBus& bus_;
-  LinkGuard guard_;
-  LinkCounters counters_{};
   msg::SensorFrame last_{};
   bool have_last_{false};
   std::array<std::uint8_t, firmware::link::kMaxTargetWire> last_wire_{};
   std::size_t last_wire_size_{0};
-  double loss_{0.0};
-  random::SeededRng loss_rng_{0};
 };
 
 }  // namespace gyrostab::hil
