@@ -40,6 +40,7 @@
 #pragma once
 
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -137,21 +138,23 @@ struct ExpReduced {
   double tail;
 };
 
+// c[0] + x·(c[1] + x·(c[2] + …)), evaluated innermost first: the same operations in the same order as the
+// nested form written out, so the bits do not depend on how a polynomial is spelled.
+template <std::size_t N>
+constexpr double horner(double x, const double (&c)[N]) {
+  double r = c[N - 1];
+  for (std::size_t i = N - 1; i-- > 0;) r = c[i] + x * r;
+  return r;
+}
+
 // (e^x − 1 − x) / x² = 1/2! + x/3! + … + x^12/14!, Horner; for |x| ≤ ln2/2 the next term is below 2^-61
 // relative to x. One polynomial for exp's reduced argument and expm1's small arguments.
 constexpr double expm1_taylor_q(double x) {
-  return 0x1p-1 +
-         x * (0x1.5555555555555p-3 +
-              x * (0x1.5555555555555p-5 +
-                   x * (0x1.1111111111111p-7 +
-                        x * (0x1.6c16c16c16c17p-10 +
-                             x * (0x1.a01a01a01a01ap-13 +
-                                  x * (0x1.a01a01a01a01ap-16 +
-                                       x * (0x1.71de3a556c734p-19 +
-                                            x * (0x1.27e4fb7789f5cp-22 +
-                                                 x * (0x1.ae64567f544e4p-26 +
-                                                      x * (0x1.1eed8eff8d898p-29 +
-                                                           x * (0x1.6124613a86d09p-33 + x * 0x1.93974a8c07c9dp-37)))))))))));
+  constexpr double c[] = {0x1p-1,                0x1.5555555555555p-3,  0x1.5555555555555p-5, 0x1.1111111111111p-7,
+                          0x1.6c16c16c16c17p-10, 0x1.a01a01a01a01ap-13, 0x1.a01a01a01a01ap-16, 0x1.71de3a556c734p-19,
+                          0x1.27e4fb7789f5cp-22, 0x1.ae64567f544e4p-26, 0x1.1eed8eff8d898p-29, 0x1.6124613a86d09p-33,
+                          0x1.93974a8c07c9dp-37};
+  return horner(x, c);
 }
 
 constexpr ExpReduced exp_reduce(double x) {
@@ -170,13 +173,9 @@ constexpr ExpReduced exp_reduce(double x) {
 // sin(hi + lo) for |hi| ≲ π/4, |lo| ≤ ulp(hi): Taylor to r^17 (next term < 2^-62 relative).
 constexpr double sin_kernel(double hi, double lo) {
   const double z = hi * hi;
-  const double s =
-      -0x1.5555555555555p-3 +
-      z * (0x1.1111111111111p-7 +
-           z * (-0x1.a01a01a01a01ap-13 +
-                z * (0x1.71de3a556c734p-19 +
-                     z * (-0x1.ae64567f544e4p-26 +
-                          z * (0x1.6124613a86d09p-33 + z * (-0x1.ae7f3e733b81fp-41 + z * 0x1.952c77030ad4ap-49))))));
+  constexpr double k[] = {-0x1.5555555555555p-3, 0x1.1111111111111p-7,  -0x1.a01a01a01a01ap-13, 0x1.71de3a556c734p-19,
+                          -0x1.ae64567f544e4p-26, 0x1.6124613a86d09p-33, -0x1.ae7f3e733b81fp-41, 0x1.952c77030ad4ap-49};
+  const double s = horner(z, k);
   // The hi·z·s correction is ≤ hi/6, so its own rounding stays far below the final one.
   return hi + ((hi * z) * s + lo * (1.0 - 0.5 * z));
 }
@@ -184,13 +183,9 @@ constexpr double sin_kernel(double hi, double lo) {
 // cos(hi + lo) for |hi| ≲ π/4: Taylor to r^18. 1 − z/2 is split so that its rounding error is kept.
 constexpr double cos_kernel(double hi, double lo) {
   const double z = hi * hi;
-  const double c =
-      0x1.5555555555555p-5 +
-      z * (-0x1.6c16c16c16c17p-10 +
-           z * (0x1.a01a01a01a01ap-16 +
-                z * (-0x1.27e4fb7789f5cp-22 +
-                     z * (0x1.1eed8eff8d898p-29 +
-                          z * (-0x1.93974a8c07c9dp-37 + z * (0x1.ae7f3e733b81fp-45 - z * 0x1.6827863b97d97p-53))))));
+  constexpr double k[] = {0x1.5555555555555p-5,  -0x1.6c16c16c16c17p-10, 0x1.a01a01a01a01ap-16, -0x1.27e4fb7789f5cp-22,
+                          0x1.1eed8eff8d898p-29, -0x1.93974a8c07c9dp-37, 0x1.ae7f3e733b81fp-45,  -0x1.6827863b97d97p-53};
+  const double c = horner(z, k);
   const double hz = 0.5 * z;
   const double w = 1.0 - hz;
   return w + (((1.0 - w) - hz) + ((z * z) * c - hi * lo));
@@ -369,16 +364,10 @@ constexpr double log(double x) {
   const double s = f / (2.0 + f);
   const double z = s * s;
   // log(1 + f) = 2·atanh(s) = 2s + s·R, R = 2z/3 + 2z²/5 + … + 2z^10/21 (|s| ≤ 0.1716, next < 2^-60).
-  const double rr =
-      z * (0x1.5555555555555p-1 +
-           z * (0x1.999999999999ap-2 +
-                z * (0x1.2492492492492p-2 +
-                     z * (0x1.c71c71c71c71cp-3 +
-                          z * (0x1.745d1745d1746p-3 +
-                               z * (0x1.3b13b13b13b14p-3 +
-                                    z * (0x1.1111111111111p-3 +
-                                         z * (0x1.e1e1e1e1e1e1ep-4 +
-                                              z * (0x1.af286bca1af28p-4 + z * 0x1.8618618618618p-4)))))))));
+  constexpr double k[] = {0x1.5555555555555p-1, 0x1.999999999999ap-2, 0x1.2492492492492p-2, 0x1.c71c71c71c71cp-3,
+                          0x1.745d1745d1746p-3, 0x1.3b13b13b13b14p-3, 0x1.1111111111111p-3, 0x1.e1e1e1e1e1e1ep-4,
+                          0x1.af286bca1af28p-4, 0x1.8618618618618p-4};
+  const double rr = z * detail::horner(z, k);
   // 2s = f − s·f and f²/2 − s·f = s·f²/2 turn it into f − (f²/2 − s·(f²/2 + R)): f is exact and carries
   // the bulk, only small terms round.
   const double hfsq = 0.5 * f * f;
