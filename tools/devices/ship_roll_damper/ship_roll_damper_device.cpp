@@ -15,7 +15,7 @@ extern const DeviceDescriptor kShipRollDamper{
         "`rk4` (the only one).",
     .figures =
         "The passive keys are refused with `law = \"active\"` and the active keys with `law = \"passive\"`. "
-        "Figures: `roll_rms_rad`, `roll_rms_unstabilized_rad`, `roll_reduction` (their ratio σ/σ₀), "
+        "Figures: `roll_rms_rad`, `roll_rms_unstabilized_rad`, `roll_rms_ratio` (their ratio σ/σ₀), `roll_reduction` (1 − σ/σ₀, what the field calls roll reduction), "
         "`roll_max_rad`, `roll_max_unstabilized_rad`, `precession_max_rad`, `precession_torque_max_Nm`, "
         "`wave_moment_rms_Nm`, `statistics_from_s`, `stop_penetration_max_rad` and "
         "`stop_penetration_bound_rad` (the end stops' largest penetration, and the bound the run's peaks "

@@ -77,10 +77,12 @@ class ShipRollDamperRun {
   }
 
   nlohmann::json figures() const {
-    const double reduction = roll_ref_.rms() > 0 ? roll_.rms() / roll_ref_.rms() : 0.0;
+    // The field's "roll reduction" is 1 − σ/σ₀ (84 % means the rms roll is 16 % of the unstabilized one).
+    const double ratio = roll_ref_.rms() > 0 ? roll_.rms() / roll_ref_.rms() : 1.0;
     return {{"roll_rms_rad", roll_.rms()},
             {"roll_rms_unstabilized_rad", roll_ref_.rms()},
-            {"roll_reduction", reduction},
+            {"roll_rms_ratio", ratio},
+            {"roll_reduction", 1.0 - ratio},
             {"roll_max_rad", roll_.peak},
             {"roll_max_unstabilized_rad", roll_ref_.peak},
             {"precession_max_rad", precession_peak_},
