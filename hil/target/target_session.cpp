@@ -42,6 +42,10 @@ std::string open_target_session(TargetBus& bus, std::uint32_t session, std::uint
   if (image != bus.launch.device) {
     return "the image " + bus.launch.image + " runs the " + image + " controller, not " + bus.launch.device;
   }
+  if (bus.hello.frame_version != firmware::link::TargetHello{}.frame_version) {
+    return "the image speaks target-link version " + std::to_string(bus.hello.frame_version) + ", this build " +
+           std::to_string(firmware::link::TargetHello{}.frame_version) + " (rebuild the image)";
+  }
   if (bus.hello.config_bytes != config.size()) {
     return "the image's " + image + " configuration has " + std::to_string(bus.hello.config_bytes) +
            " bytes, this build's " + std::to_string(config.size()) + ": the image is of another version (rebuild it)";
