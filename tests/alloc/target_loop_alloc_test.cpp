@@ -5,6 +5,7 @@
 // images are missing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -17,8 +18,21 @@ namespace {
 
 std::uint64_t g_before = 0, g_after = 0;
 
+// qemu-system-arm on the PATH (looked up directly: no shell).
+bool have_qemu() {
+  const char* path = std::getenv("PATH");
+  std::string rest = path != nullptr ? path : "";
+  for (std::size_t at = 0; at <= rest.size();) {
+    const std::size_t colon = std::min(rest.find(':', at), rest.size());
+    const std::string dir = rest.substr(at, colon - at);
+    if (!dir.empty() && std::filesystem::exists(dir + "/qemu-system-arm")) return true;
+    at = colon + 1;
+  }
+  return false;
+}
+
 TEST(ZeroAllocation, PlantLoopOverTheTargetLink) {
-  if (std::system("command -v qemu-system-arm >/dev/null 2>&1") != 0) GTEST_SKIP() << "no qemu-system-arm";
+  if (!have_qemu()) GTEST_SKIP() << "no qemu-system-arm";
   if (!std::filesystem::exists(std::string(GYROSTAB_BINARY_DIR) + "/arm/m7/ship_roll_damper.elf")) {
     GTEST_SKIP() << "no controller images (arm-none-eabi-g++ missing at build time)";
   }
