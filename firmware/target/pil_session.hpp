@@ -61,7 +61,7 @@ class PilSession {
       const auto t0 = clock_();
       const link::TargetRxVerdict v = decoder_.judge(wire, f);
       if (v != link::TargetRxVerdict::kOk) {
-        if (controller_ != nullptr) step_missing_and_answer(t0);
+        if (controller_ != nullptr) step_and_answer(nullptr, t0);  // this tick's frame is lost
         continue;
       }
       switch (f.kind) {
@@ -143,8 +143,6 @@ class PilSession {
       ++late_;  // a tick already stepped past: nothing to do
     }
   }
-
-  void step_missing_and_answer(std::int64_t t0) { step_and_answer(nullptr, t0); }
 
   // Steps next_tick_ and sends its command. t0: when the frame's handling began (link cost = everything in
   // this tick but the step).

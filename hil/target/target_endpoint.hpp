@@ -54,7 +54,6 @@ struct TargetBus {
   firmware::link::TargetConfigVerdict verdict{};
   firmware::link::TargetProfile profile{};
   bool have_profile{false};
-  std::uint64_t profile_frames_early{0};
 
   // Writes one encoded frame. false: the emulator is gone or does not read.
   bool write(std::span<const std::uint8_t> bytes) {
@@ -164,7 +163,6 @@ class FrameEndpoint<TargetBus> : public EndpointBook {
       if (f.kind == firmware::link::TargetFrameKind::kProfile) {
         std::memcpy(&bus_.profile, f.payload.data(), sizeof bus_.profile);
         bus_.have_profile = true;
-        ++bus_.profile_frames_early;
         continue;
       }
       ++counters_.rejected_malformed;  // a kind the loop has no use for now
@@ -173,7 +171,6 @@ class FrameEndpoint<TargetBus> : public EndpointBook {
 
   void bind_to_last() {}  // bound in the handshake (open_target_session)
 
-  nlohmann::json report_extra() const { return nlohmann::json::object(); }
   std::string peer_state() { return bus_.peer_state(); }
 
  private:
