@@ -47,8 +47,9 @@ void print_problems(const SceneReader& reader) {
   for (const auto& e : reader.errors()) std::fprintf(stderr, "%s\n", e.c_str());
 }
 
-// Reads and checks the scene with its device's schema; [output] signals against the device's columns.
-std::unique_ptr<DeviceScene> read_scene(SceneReader& reader) {
+}  // namespace
+
+std::unique_ptr<DeviceScene> read_device_scene(SceneReader& reader) {
   const DeviceDescriptor* d = find_device(reader);
   if (d == nullptr) return nullptr;
   std::unique_ptr<DeviceScene> scene = d->read(reader);
@@ -66,8 +67,6 @@ std::unique_ptr<DeviceScene> read_scene(SceneReader& reader) {
   }
   return scene;
 }
-
-}  // namespace
 
 int run_scene(const RunRequest& req) {
   // A logging run reads the file once, so that the bus log's scene event holds exactly the text that ran.
@@ -89,7 +88,7 @@ int run_scene(const RunRequest& req) {
     print_problems(reader);
     return 2;
   }
-  std::unique_ptr<DeviceScene> scene = read_scene(reader);
+  std::unique_ptr<DeviceScene> scene = read_device_scene(reader);
   print_problems(reader);
   if (scene == nullptr) {
     std::fprintf(stderr, "%s: refused (%zu problem%s)\n", req.scene_path.c_str(), reader.errors().size(),
@@ -125,7 +124,7 @@ int run_scene(const RunRequest& req) {
 int check_scene_text(std::string_view text, const std::string& name, std::vector<std::string>* problems) {
   SceneReader reader;
   int rc = 2;
-  if (reader.parse(text, name) && read_scene(reader) != nullptr) rc = 0;
+  if (reader.parse(text, name) && read_device_scene(reader) != nullptr) rc = 0;
   if (problems != nullptr) {
     problems->insert(problems->end(), reader.errors().begin(), reader.errors().end());
   } else {

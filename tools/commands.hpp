@@ -1,6 +1,7 @@
 // `gyrostab run SCENE [--out DIR]` and `gyrostab check SCENE`: dispatch on the scene's [scene] device.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,5 +20,12 @@ int run_scene(const RunRequest& request);
 // or 2 (refused); the problems go to `problems` if given, else to stderr. Never throws on bad input.
 int check_scene_text(std::string_view text, const std::string& name,
                      std::vector<std::string>* problems = nullptr);
+
+class DeviceScene;
+class SceneReader;
+// A parsed scene read and checked as `run` and `check` read it (its device's schema and checks, [output]
+// signals, the recording's size); nullptr, with the problems in the reader, when refused. `gyrostab sweep`
+// reads every task's scene through it.
+std::unique_ptr<DeviceScene> read_device_scene(SceneReader& reader);
 
 }  // namespace gyrostab::tools

@@ -1,4 +1,4 @@
-// gyrostab — command-line entry point: demo, run, check, replay, accuracy.
+// gyrostab — command-line entry point: demo, run, check, replay, accuracy, sweep.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -13,6 +13,8 @@
 #include "tools/run/link_cli.hpp"
 #include "tools/run/process_pair.hpp"
 #include "tools/scene/scene_keys.hpp"
+#include "tools/sweep/merge.hpp"
+#include "tools/sweep/sweep_command.hpp"
 #include "hil/can/dbc_writer.hpp"
 
 #ifndef GYROSTAB_VERSION
@@ -151,6 +153,21 @@ int main(int argc, char** argv) {
   accuracy_cmd->add_flag("!--no-plot", accuracy.plot, "no work_precision.png");
   accuracy_cmd->add_flag("!--no-progress", accuracy.progress, "no progress line");
 
+  // A sizing study over a sea-state table (docs/sweep.md); `sweep merge DIR` merges a study directory.
+  gyrostab::tools::sweep::SweepRequest sweep;
+  CLI::App* sweep_cmd = app.add_subcommand(
+      "sweep", "run a sizing study: every sea state x variant x seed of a study file, in process on N threads, "
+               "then merge (exit 0 all completed, 2 refused, 3 tasks failed, 4 tasks missing; docs/sweep.md)");
+  sweep_cmd->add_option("study", sweep.study_path, "study file (TOML)");
+  sweep_cmd->add_option("--out", sweep.out_dir, "study directory (task files, study.json, results/)");
+  sweep_cmd->add_option("--jobs", sweep.jobs, "threads (default: the number of cores)")->check(CLI::Range(1, 1024));
+  sweep_cmd->add_option("--shard", sweep.shard, "I/N: run only the tasks whose index mod N is I-1, and do not merge");
+  sweep_cmd->add_flag("--quiet", sweep.quiet, "no progress");
+  std::string merge_dir;
+  CLI::App* merge_cmd = sweep_cmd->add_subcommand(
+      "merge", "merge a study directory's task files into results/ (tables, summaries, heat maps) and timing.json");
+  merge_cmd->add_option("dir", merge_dir, "study directory")->required();
+
   // The DBC file of the CAN bus (docs/can.md): written from the frame map (hil/can/frame_map.hpp).
   std::string dbc_out;
   CLI::App* dbc_cmd = app.add_subcommand(
@@ -177,6 +194,14 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (accuracy_cmd->parsed()) return gyrostab::tools::run_accuracy(accuracy);
+  if (merge_cmd->parsed()) return gyrostab::tools::sweep::merge_study_dir(merge_dir, sweep.quiet);
+  if (sweep_cmd->parsed()) {
+    if (sweep.study_path.empty()) {
+      std::fprintf(stderr, "gyrostab sweep: a study file is required (gyrostab sweep STUDY.toml --out DIR)\n");
+      return 2;
+    }
+    return gyrostab::tools::sweep::run_sweep(sweep);
+  }
   if (replay_cmd->parsed()) {
     if (resimulate) replay.role = gyrostab::tools::Role::kResimulate;
     if (replay_target && resimulate) {
