@@ -4,7 +4,9 @@
 //
 //   y(t) = Σᵢ bᵢ cos(ωᵢ t + ψᵢ),   ẏ(t) = −Σᵢ ωᵢ bᵢ sin(ωᵢ t + ψᵢ)
 //   band [ω_lo, ω_hi] cut into N equal bins of width Δω; component i:
-//     ωᵢ = centre of bin i + jitter·(u₁ − ½)·Δω          (u₁ uniform: breaks the 2π/Δω repeat period)
+//     ωᵢ = centre of bin i + jitter·(u₁ − ½)·Δω          (u₁ uniform: breaks the 2π/Δω repeat period;
+//                                                          seen at ωᵢ − (ωᵢ²/g) V by an observer moving at V
+//                                                          along the waves: velocity_along_waves)
 //     aᵢ = √(2 ∫_bin S dω)                                (elevation amplitude [m]: the bin's whole energy)
 //     φᵢ = 2π u₂                                          (random phase)
 //     bᵢ = |H(ωᵢ)| aᵢ,  ψᵢ = φᵢ + arg H(ωᵢ)                (transfer H: elevation, slope, roll moment, RAO)
@@ -58,6 +60,9 @@ struct IrregularSeaParams {
   double omega_max{0.0};     // upper band edge [rad/s]; 0 ⇒ 5 ωp
   double jitter{1.0};        // fraction of a bin over which ωᵢ is drawn [-]
   double grid_period{1e-3};  // dt of the sample(n) grid [s]
+  // V: the observer's velocity along the waves' direction of travel [m/s] (ship_course.hpp); each component
+  // is then seen at its encounter frequency ωᵢ − (ωᵢ²/g) V, the transfer still evaluated at the wave's ωᵢ.
+  double velocity_along_waves{0.0};
 };
 
 struct WaveSample {
@@ -80,6 +85,7 @@ class IrregularSea {
       return "irregular sea: band must satisfy 0 <= omega_min < omega_max";
     if (!(p.jitter >= 0.0 && p.jitter <= 1.0)) return "irregular sea: jitter must be in [0, 1]";
     if (!(p.grid_period > 0.0)) return "irregular sea: grid_period must be > 0 s";
+    if (!std::isfinite(p.velocity_along_waves)) return "irregular sea: velocity_along_waves must be finite";
     return nullptr;
   }
 
@@ -99,13 +105,14 @@ class IrregularSea {
       const double w = bin_lo + (0.5 + p.jitter * (u1 - 0.5)) * dw;
       const double a = std::sqrt(2.0 * spectrum.integral(bin_lo, bin_lo + dw));
       const std::complex<double> h = transfer(w);
-      omega_[i] = w;
+      const double we = w - w * w / kStandardGravity * p.velocity_along_waves;
+      omega_[i] = we;
       elevation_amplitude_[i] = a;
       amplitude_[i] = std::abs(h) * a;
       phase_[i] = 2.0 * std::numbers::pi * u2 + std::arg(h);
-      rate_coeff_[i] = -w * amplitude_[i];
-      rot_re_[i] = std::cos(w * dt_);
-      rot_im_[i] = std::sin(w * dt_);
+      rate_coeff_[i] = -we * amplitude_[i];
+      rot_re_[i] = std::cos(we * dt_);
+      rot_im_[i] = std::sin(we * dt_);
       band_variance_ += 0.5 * a * a;
       output_variance_ += 0.5 * amplitude_[i] * amplitude_[i];
     }
@@ -118,7 +125,7 @@ class IrregularSea {
   double band_lo() const { return lo_; }
   double band_hi() const { return hi_; }
   double grid_period() const { return dt_; }
-  double frequency(int i) const { return omega_[i]; }                          // ωᵢ [rad/s]
+  double frequency(int i) const { return omega_[i]; }  // ωᵢ as seen: encounter frequency if V ≠ 0 [rad/s]
   double elevation_amplitude(int i) const { return elevation_amplitude_[i]; }  // aᵢ [m]
   double amplitude(int i) const { return amplitude_[i]; }                      // bᵢ [output unit]
   double phase(int i) const { return phase_[i]; }                              // ψᵢ [rad]

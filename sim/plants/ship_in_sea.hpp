@@ -39,7 +39,7 @@ struct ShipInSeaOf {
   }
   void add_held_inputs(const State& x, State& dx) const {
     dx[models::ShipRollDamper::kPrecessionRate] +=
-        (command_Nm - brake_Nms * x[models::ShipRollDamper::kPrecessionRate]) / ship.params().B;
+        (command_Nm - brake_Nms * x[models::ShipRollDamper::kPrecessionRate]) / ship.params().total_B();
   }
 
   // The gyroscopic pair of (14.8) for dynamics::GyroscopicExponential (the accuracy study's variant; the scene
@@ -48,8 +48,9 @@ struct ShipInSeaOf {
     const models::ShipRollDamperParams& p = ship.params();
     const double beta = x[models::ShipRollDamper::kPrecession];
     const double sb = std::sin(beta), cb = std::cos(beta);
-    const double inertia = p.A - p.Q * sb * sb;
-    return {p.H * cb / inertia, p.H * cb / p.B, p.d1 / inertia, (p.d2 + brake_Nms) / p.B};
+    const double inertia = p.A - p.total_Q() * sb * sb;
+    return {p.total_H() * cb / inertia, p.total_H() * cb / p.total_B(), p.d1 / inertia,
+            (p.total_d2() + brake_Nms) / p.total_B()};
   }
 };
 

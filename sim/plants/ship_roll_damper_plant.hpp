@@ -69,7 +69,7 @@ class ShipRollDamperPlant {
   ShipRollDamperPlant(const ShipRollDamperPlantParams& p, const PlantTiming& t)
       : p_(p),
         t_(t),
-        sea_(p.sea, t.tick_s() / t.substeps, random::SeededRng(t.seed, kSeaStream), p.ship.c),
+        sea_(p.sea, t.tick_s() / t.substeps, random::SeededRng(t.seed, kSeaStream), p.ship.c, p.ship.turn_rate),
         ship_{Ship(p.ship), &sea_, 0.0, 0.0},
         reference_{Ship(locked(p.ship)), &sea_, 0.0, 0.0},
         integ_(ship_),
@@ -121,6 +121,13 @@ class ShipRollDamperPlant {
   double reference_roll_rad() const { return x_ref_[Ship::kRoll]; }
   double wave_moment_Nm(double t) const { return sea_(t); }
   double wave_moment_rms_Nm() const { return sea_.rms(); }
+  // The gyro's loads on the hull now (models/ship_roll_damper.hpp: mount_loads), with the held drive and brake
+  // and the bearing's friction as the precession axis's torque.
+  models::ShipMountLoads mount_loads() const {
+    const double v = x_[Ship::kPrecessionRate];
+    const double axis = ship_.command_Nm - (ship_.brake_Nms + p_.ship.total_d2()) * v;
+    return ship_.ship.mount_loads(x_, axis);
+  }
   HeldInputs held_inputs() const { return {ship_.command_Nm, ship_.brake_Nms}; }
   const State& state() const { return x_; }
   const Dynamics& dynamics() const { return ship_; }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -56,7 +57,18 @@ class ShipRollDamperRun {
     torque_peak_ = std::fmax(torque_peak_, std::fabs(in.command_Nm));
     roll_rate_peak_ = std::fmax(roll_rate_peak_, std::fabs(plant_.roll_rate_rad_s()));
     precession_rate_peak_ = std::fmax(precession_rate_peak_, std::fabs(plant_.precession_rate_rad_s()));
+    const bool contact = std::fabs(plant_.precession_rad()) > s_.plant.ship.beta_stop;
     penetration_peak_ = std::fmax(penetration_peak_, std::fabs(plant_.precession_rad()) - s_.plant.ship.beta_stop);
+    if (tick + 1 >= settle_tick_) {
+      if (contact && !in_contact_) ++stop_contacts_;
+      const models::ShipMountLoads m = plant_.mount_loads();
+      roll_moment_peak_ = std::fmax(roll_moment_peak_, std::fabs(m.roll));
+      yaw_moment_peak_ = std::fmax(yaw_moment_peak_, std::fabs(m.yaw));
+      yaw_unit_peak_ = std::fmax(yaw_unit_peak_, std::fabs(m.yaw_unit));
+      pitch_moment_peak_ = std::fmax(pitch_moment_peak_, std::fabs(m.pitch));
+      yaw_moment_.add(m.yaw);
+    }
+    in_contact_ = contact;
   }
   bool finite() const { return plant_.finite(); }
 
@@ -90,7 +102,13 @@ class ShipRollDamperRun {
             {"wave_moment_rms_Nm", plant_.wave_moment_rms_Nm()},
             {"statistics_from_s", s_.settle_s},
             {"stop_penetration_max_rad", std::fmax(penetration_peak_, 0.0)},
-            {"stop_penetration_bound_rad", stop_penetration_bound()}};
+            {"stop_penetration_bound_rad", stop_penetration_bound()},
+            {"stop_contacts", stop_contacts_},
+            {"roll_moment_max_Nm", roll_moment_peak_},
+            {"yaw_moment_max_Nm", yaw_moment_peak_},
+            {"yaw_moment_rms_Nm", yaw_moment_.rms()},
+            {"yaw_moment_unit_max_Nm", yaw_unit_peak_},
+            {"pitch_moment_max_Nm", pitch_moment_peak_}};
   }
 
   // report.json "error_estimate": the stabilized ship over 10 s from the start of the statistics (or the
@@ -118,9 +136,15 @@ class ShipRollDamperRun {
     if (p.ship.H == 0.0) parts[0] = "ship roll + gyro case (14.8) with H = 0: no gyroscopic coupling";
     if (p.ship.w > 0.0) parts.push_back("wall-sided righting arm");
     if (p.ship.d1 > 0.0 || p.ship.d2 > 0.0) parts.push_back("viscous roll / precession damping");
+    if (p.ship.units == 2) parts.push_back("twin counter-rotating units, cases linked (yaw moments cancel)");
+    if (p.ship.turn_rate != 0.0) parts.push_back("turning ship: gyroscopic stiffness H Omega3 (10.22)");
     parts.push_back(p.sea.regular() ? "regular sea (14.9)" : "irregular sea");
+    if (p.sea.course.speed != 0.0 || p.sea.course.heading != 0.5 * std::numbers::pi)
+      parts.push_back("sea at a heading and speed: encounter frequency, slope sin(mu)");
+    if (p.ship.turn_rate != 0.0) parts.push_back("sea seen along a circular track (direct sum per call)");
     if (p.sensors.noisy()) parts.push_back("sensor noise");
-    return {{"plant",
+    return {{"course", course()},
+            {"plant",
              {{"model", models::ShipRollDamper::kName},
               {"fidelity", "full (14.8): no reduced model (epsilon = O(1) for a ship gyro)"},
               {"components", parts},
@@ -140,10 +164,28 @@ class ShipRollDamperRun {
   // is left out).
   double stop_penetration_bound() const {
     const auto& p = s_.plant.ship;
-    const double ks = p.B * p.stop_frequency * p.stop_frequency;
+    const double ks = p.total_B() * p.stop_frequency * p.stop_frequency;
     const double impact = precession_rate_peak_ / p.stop_frequency * (p.stop_damping_ratio >= 1.0 ? std::exp(-1.0) : 1.0);
-    const double inertial = 0.5 * std::abs(p.Q) * roll_rate_peak_ * roll_rate_peak_;  // |Q sinβ cosβ φ'²|
-    return (p.H * roll_rate_peak_ + torque_peak_ + inertial) / ks + impact;
+    const double inertial = 0.5 * std::abs(p.total_Q()) * roll_rate_peak_ * roll_rate_peak_;  // |Q sinβ cosβ φ'²|
+    const double turn = std::abs(p.spin_sum() * p.turn_rate);                                // |H Ω3 cosφ sinβ|
+    return (p.total_H() * roll_rate_peak_ + torque_peak_ + inertial + turn) / ks + impact;
+  }
+
+  // The course the sea is seen from; the regular wave's encounter frequency (straight course).
+  nlohmann::json course() const {
+    const auto& p = s_.plant;
+    nlohmann::json e{{"speed_m_s", p.sea.course.speed},
+                     {"heading_deg", p.sea.course.heading * 180.0 / std::numbers::pi},
+                     {"turn_rate_deg_s", p.ship.turn_rate * 180.0 / std::numbers::pi},
+                     {"units", p.ship.units}};
+    if (p.sea.regular() && !p.sea.course.turning() && p.ship.turn_rate == 0.0)
+      e["encounter_frequency_rad_s"] = p.sea.course.encounter_frequency(p.sea.wave.omega);
+    if (p.ship.spin_sum() > 0.0)
+      e["turn_rate_bound_deg_s"] = p.ship.turn_rate_bound(centring_stiffness()) * 180.0 / std::numbers::pi;
+    return e;
+  }
+  double centring_stiffness() const {
+    return s_.controller.mode == firmware::ShipRollDamperMode::kActive ? s_.controller.active.centring_stiffness : 0.0;
   }
 
   const ShipRollDamperScene& s_;
@@ -153,6 +195,10 @@ class ShipRollDamperRun {
   analysis::RunningStats roll_, roll_ref_;
   double precession_peak_{0.0}, torque_peak_{0.0};
   double roll_rate_peak_{0.0}, precession_rate_peak_{0.0}, penetration_peak_{-1e300};
+  bool in_contact_{false};
+  std::int64_t stop_contacts_{0};  // contact onsets after the settling time
+  double roll_moment_peak_{0.0}, yaw_moment_peak_{0.0}, yaw_unit_peak_{0.0}, pitch_moment_peak_{0.0};
+  analysis::RunningStats yaw_moment_;
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
 };
 

@@ -1,6 +1,8 @@
 // The keys of a ship roll damper scene: one field table over ShipRollDamperScene (tools/scene/schema.hpp),
 // the source of the reader, its messages and docs/scenes.md.
 #include <algorithm>
+#include <cstdio>
+#include <numbers>
 #include <string>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
@@ -50,6 +52,9 @@ constexpr schema::Field<S> kFields[] = {
               "rotor spin momentum; 0: a gyro without spin (the active law refuses it, the passive brake runs)",
               GS_NUMBER(plant.ship.H))
         .req(),
+    F::integer("gyro", "units", "", 1, 2,
+               "1: one unit; 2: a counter-rotating pair with linked cases (mirror precession; B, Q, q, d2, H per unit)",
+               GS_INTEGER(plant.ship.units)),
     F::number("gyro", "beta_stop_deg", "deg", Range::open_closed(0.0, 89.0), "hard end stops of the precession angle",
               GS_NUMBER(plant.ship.beta_stop))
         .degrees(),
@@ -61,10 +66,13 @@ constexpr schema::Field<S> kFields[] = {
               "plant brake at precession_brake = 1 (the safe state locks the case)", GS_NUMBER(plant.brake_full_Nms)),
     F::choice("sea", "kind", kSeaKinds, "wave model; the keys of the other kinds are refused",
               GS_CHOICE(plant.sea.kind)),
-    F::number("sea", "E0", "N m", Range::non_negative(), "wave moment amplitude (14.9)", GS_NUMBER(plant.sea.wave.E0))
+    F::number("sea", "E0", "N m", Range::non_negative(),
+              "wave moment amplitude (14.9) in beam seas at rest; × sin(heading) on the course",
+              GS_NUMBER(plant.sea.wave.E0))
         .req()
         .when(regular, "regular"),
-    F::number("sea", "omega", "rad/s", Range::positive(), "wave frequency", GS_NUMBER(plant.sea.wave.omega))
+    F::number("sea", "omega", "rad/s", Range::positive(),
+              "wave frequency; the ship meets it at ω − (ω²/g) U cos(heading)", GS_NUMBER(plant.sea.wave.omega))
         .req()
         .when(regular, "regular"),
     F::number("sea", "Hs", "m", Range::positive(), "significant wave height", GS_NUMBER(plant.sea.spectrum.Hs))
@@ -81,6 +89,17 @@ constexpr schema::Field<S> kFields[] = {
     F::number("sea", "kappa", "", Range::open_closed(0.0, 2.0), "effective wave-slope coefficient κ",
               GS_NUMBER(plant.sea.kappa))
         .when(irregular, "irregular"),
+    F::number("course", "speed", "m/s", Range::closed(0.0, 30.0), "ship speed U through the water",
+              GS_NUMBER(plant.sea.course.speed)),
+    F::number("course", "heading_deg", "deg", Range::closed(-360.0, 360.0),
+              "direction of travel of the waves from the bow, counterclockwise from above: 90 beam seas (from "
+              "starboard), 180 head seas, 0 following seas",
+              GS_NUMBER(plant.sea.course.heading))
+        .degrees(),
+    F::number("course", "turn_rate_deg_s", "deg/s", Range::closed(-10.0, 10.0),
+              "steady yaw rate Ω3 about the upward vertical (> 0 bow to port, the rotor's sense for H > 0)",
+              GS_NUMBER(plant.ship.turn_rate))
+        .degrees(),
     F::number("sensors", "roll_angle_noise_rad", "rad", Range::non_negative(),
               "roll angle (AHRS) white noise, standard deviation per sample",
               GS_NUMBER(plant.sensors.roll_angle_noise_rad)),
@@ -104,7 +123,7 @@ constexpr schema::Field<S> kFields[] = {
     F::number("controller", "roll_rate_gain", "N m s/rad", Range::non_negative(), "M2 per rad/s of roll rate (× cos β)",
               GS_NUMBER(controller.active.roll_rate_gain))
         .when(active, "active")
-        .defaults_to([](const S& s) { return s.plant.ship.H; }, "H"),
+        .defaults_to([](const S& s) { return s.plant.ship.total_H(); }, "H × units"),
     F::number("controller", "precession_damping", "N m s/rad", Range::positive(), "M2 per rad/s of precession rate",
               GS_NUMBER(controller.active.precession_damping))
         .when(active, "active"),
@@ -143,6 +162,21 @@ constexpr schema::Rule<S> kRules[] = {
        const char* why = motion::WaveSpectrum::check(sp);
        return why != nullptr ? why : "";
      }},
+    {"course", "turn_rate_deg_s",
+     "a turn against the rotor's sense stays above the bound Ω3 > −(q + k_c)/H, where the case's stiffness "
+     "q + k_c + HΩ3 (k_c the active law's centring stiffness) turns negative and the case capsizes against "
+     "its stop (docs/models/ship-roll-damper.md#turning); a twin pair has no bound",
+     [](const S& s) -> std::string {
+       const double bound = s.plant.ship.turn_rate_bound(active(s) ? s.controller.active.centring_stiffness : 0.0);
+       if (s.plant.ship.turn_rate == 0.0 || s.plant.ship.turn_rate > bound) return "";
+       char m[256];
+       std::snprintf(m, sizeof m,
+                     "turn rate %.4g deg/s is at or beyond the bound %.4g deg/s = -(q + k_c)/H, where the "
+                     "case's stiffness q + k_c + H*Omega3 is negative: the case capsizes (turn slower, turn the "
+                     "other way, raise the centring stiffness, or use units = 2)",
+                     s.plant.ship.turn_rate * 180.0 / std::numbers::pi, bound * 180.0 / std::numbers::pi);
+       return m;
+     }},
     {"controller", "law",
      "the controller's start-up check (firmware/app/ship_roll_damper_controller.hpp): the sampled loop's "
      "limits for the brake or the active law at the control period",
@@ -153,9 +187,9 @@ constexpr schema::Rule<S> kRules[] = {
 void derive(S& s) {
   auto& c = s.controller;
   c.runtime.tick_period_ns = s.loop.tick_ns;
-  c.brake.B = s.plant.ship.B;
-  c.active.B = s.plant.ship.B;
-  c.active.H = s.plant.ship.H;
+  c.brake.B = s.plant.ship.total_B();
+  c.active.B = s.plant.ship.total_B();
+  c.active.H = s.plant.ship.total_H();
   c.active.beta_stop = s.plant.ship.beta_stop;
 }
 
