@@ -102,6 +102,28 @@ TEST(SceneCheck, CheckSceneTextCollectsProblemsWithoutPrinting) {
   EXPECT_TRUE(problems.empty()) << problems.front();
 }
 
+// The turning ship: a turn against the rotor beyond −(q + k_c)/H is refused with the bound; a slower turn, the
+// other sense, a stiffer centring or a twin pair pass.
+TEST(SceneCheck, TurnBeyondTheCasesBoundIsRefusedWithTheBound) {
+  const std::string base =
+      "[scene]\ndevice = \"ship_roll_damper\"\n[ship]\nA = 3.2e7\nc = 1.1772e7\n[gyro]\nB = 1.5e4\n"
+      "q = 1350\nH = 1.018e6\n[sea]\nkind = \"regular\"\nE0 = 1e5\nomega = 0.6\n";
+  // −q/H = −0.0760 deg/s for this gyro; the passive brake has no centring stiffness.
+  std::vector<std::string> problems;
+  EXPECT_EQ(tools::check_scene_text(base + "[course]\nturn_rate_deg_s = -0.08\n", "t.toml", &problems), 2);
+  EXPECT_TRUE(contains(problems, "turn rate -0.08 deg/s is at or beyond the bound -0.07598 deg/s"))
+      << (problems.empty() ? "" : problems.front());
+  const std::string twin = std::string(base).insert(base.find("[sea]"), "units = 2\n");
+  for (const std::string& text :
+       {base + "[course]\nturn_rate_deg_s = -0.07\n", base + "[course]\nturn_rate_deg_s = 2\nspeed = 6\n",
+        base + "[course]\nturn_rate_deg_s = -2\n[controller]\nlaw = \"active\"\nprecession_damping = 8.36e4\n"
+               "centring_stiffness = 4e4\n",
+        twin + "[course]\nturn_rate_deg_s = -2\n"}) {
+    problems.clear();
+    EXPECT_EQ(tools::check_scene_text(text, "t.toml", &problems), 0) << text << (problems.empty() ? "" : problems.front());
+  }
+}
+
 // A whole scene: a physically impossible ship (negative inertia) is refused by `check` with exit code 2.
 TEST(SceneCheck, ShippedScenesPassAndBrokenOnesAreRefused) {
   tools::RunRequest req;
