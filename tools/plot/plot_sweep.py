@@ -64,7 +64,7 @@ def draw(rows, figure, title, cmap, fmt, variant, path):
         label = "n/a" if missing else fmt.format(v)
         shade = 0.0 if missing else (v - lo) / (hi - lo)
         ax.text(x, y, label, ha="center", va="center", fontsize=9,
-                color="black" if missing or (0.35 < shade < 0.8) else "white")
+                color="white" if not missing and shade < 0.35 else "black")
     ax.set_xlim(-0.5, len(tp) - 0.5)
     ax.set_ylim(-0.5, len(hs) - 0.5)
     ax.set_xticks(range(len(tp)), [f"{t:g}" for t in tp])

@@ -3,7 +3,7 @@
 // two variants is not masked by sea noise. Not from the shard, the order or the thread either: a task's seed
 // is the same however the study is split. Each index goes through a SplitMix64 step (the generator that seeds
 // xoshiro256**, sim/random/seeded_rng.hpp), so neighbouring cells get unrelated seeds.
-// Test: tests/sweep/sweep_unit_test.cpp.
+// Test: tests/sweep/sweep_cli_test.py (SeedsFollowTheSeaNotTheVariant).
 #pragma once
 
 #include <cstdint>
