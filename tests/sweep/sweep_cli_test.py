@@ -87,7 +87,7 @@ def results(d):
     out = {}
     for root, _, files in os.walk(os.path.join(d, "results")):
         for name in files:
-            if name.endswith((".csv", ".json")):
+            if name.endswith((".csv", ".json", ".md")):
                 path = os.path.join(root, name)
                 with open(path, "rb") as f:
                     out[os.path.relpath(path, d)] = f.read()
@@ -110,7 +110,7 @@ def shards_and_seeds(study_file):
     rc, out, err = run("sweep", study_file, "--out", whole, "--jobs", "2", "--quiet")
     check("ShardsAnyOrderAnyJobsGiveTheSameBytes", rc == 0, f"whole run exit {rc}: {err}")
     base = results(whole)
-    check("ShardsAnyOrderAnyJobsGiveTheSameBytes", len(base) == 7, f"7 result files expected, got {sorted(base)}")
+    check("ShardsAnyOrderAnyJobsGiveTheSameBytes", len(base) == 8, f"8 result files expected, got {sorted(base)}")
     rows = json.loads(base.get("results/H-1.018e6/cells.json", b"[]"))
     check("ShardsAnyOrderAnyJobsGiveTheSameBytes",
           len(rows) == 3 and all(isinstance(r["mean"]["roll_rms_rad"], float) and r["mean"]["roll_rms_rad"] > 0

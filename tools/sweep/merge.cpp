@@ -245,6 +245,41 @@ std::string summary_csv_row(const json& sum) {
   return row + "\n";
 }
 
+// The numbers a reader compares first, as a Markdown table (docs/sweep.md quotes the sample study's), rounded
+// for reading; the CSV and JSON files keep every digit.
+std::string summary_markdown_header() {
+  std::string h = "| variant | roll rms [deg] | unstabilized [deg] | roll reduction | precession max [deg] | "
+                  "torque peak [kN m] | stop contacts |";
+  std::string rule = "|---|---:|---:|---:|---:|---:|---:|";
+  for (const RollCriterion& c : kRollCriteria) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " operability %s %.1f° |", std::string(c.applies).c_str(), c.limit_deg);
+    h += buf;
+    rule += "---:|";
+  }
+  return h + "\n" + rule + "\n";
+}
+
+std::string summary_markdown_row(const json& sum) {
+  const json& m = sum["weighted_mean"];
+  const auto fixed = [](const json& v, double scale, const char* format) {
+    if (!v.is_number()) return std::string("n/a");
+    char buf[64];
+    std::snprintf(buf, sizeof buf, format, scale * v.get<double>());
+    return std::string(buf);
+  };
+  constexpr double kDeg = 180.0 / 3.14159265358979323846;
+  std::string row = "| " + sum["variant"].get<std::string>() + " | " + fixed(m["roll_rms_rad"], kDeg, "%.2f") + " | " +
+                    fixed(m["roll_rms_unstabilized_rad"], kDeg, "%.2f") + " | " + fixed(m["roll_reduction"], 1.0, "%.3f") +
+                    " | " + fixed(m["precession_max_rad"], kDeg, "%.1f") + " | " +
+                    fixed(m["precession_torque_max_Nm"], 1e-3, "%.1f") + " | " + fixed(m["stop_contacts"], 1.0, "%.2f") +
+                    " |";
+  for (const json& c : sum["roll_criteria"]) {
+    row += " " + fixed(c["operability"], 1.0, "%.3f") + " (" + fixed(c["operability_unstabilized"], 1.0, "%.3f") + ") |";
+  }
+  return row + "\n";
+}
+
 bool write_file(const fs::path& path, const std::string& text, std::string& error) {
   std::ofstream f(path, std::ios::binary);
   f << text;
@@ -339,6 +374,7 @@ int merge_study_dir(const std::string& dir, bool quiet) {
     return kSweepRefused;
   }
   std::string summary = summary_csv_header();
+  std::string markdown = summary_markdown_header();
   int failed = 0;
   bool ok = true;
   for (int v = 0; v < static_cast<int>(s.variants.size()) && ok; ++v) {
@@ -352,8 +388,10 @@ int merge_study_dir(const std::string& dir, bool quiet) {
          write_file(vdir / "cells.json", cells_json(s, table).dump(2) + "\n", error) &&
          write_file(vdir / "summary.json", sum.dump(2) + "\n", error);
     summary += summary_csv_row(sum);
+    markdown += summary_markdown_row(sum);
   }
-  ok = ok && write_file(staged / "summary.csv", summary, error);
+  ok = ok && write_file(staged / "summary.csv", summary, error) &&
+       write_file(staged / "summary.md", markdown, error);
   if (!ok) {
     std::fprintf(stderr, "gyrostab sweep merge: %s\n", error.empty() ? ec.message().c_str() : error.c_str());
     fs::remove_all(staged, ec);
@@ -381,7 +419,7 @@ int merge_study_dir(const std::string& dir, bool quiet) {
 
   const std::size_t have = tasks.size() - missing.size();
   if (!quiet || !missing.empty() || failed > 0) {
-    std::printf("sweep merge: %s: %zu of %zu tasks (%d failed, %zu missing); wrote %s/results: summary.csv and, per "
+    std::printf("sweep merge: %s: %zu of %zu tasks (%d failed, %zu missing); wrote %s/results: summary.csv, summary.md and, per "
                 "variant, cells.csv, cells.json, summary.json%s\n",
                 s.name.c_str(), have, tasks.size(), failed, missing.size(), dir.c_str(),
                 maps ? ", heatmap_roll_reduction.png, heatmap_stop_contacts.png" : "");
