@@ -16,6 +16,9 @@ Claims:
   FailingVariantIsRecordedOthersComplete  a variant the scene check refuses: its tasks "refused" with the
                                           reader's reason, the other variant complete, exit 3
   DamagedAndStaleFilesAreFoundAndRerun    merge: exit 4, left out, named; rerun: exactly those run again
+  HeadingsSplitTheCellsProbability        headings_deg = [90, 45] with probabilities [3, 1]: a row per cell and
+                                          heading with the split probability, the heading in the task's scene,
+                                          and a different unstabilized roll at the two headings
   BadStudyFilesAreRefusedNothingWritten   each bad file: exit 2, its message names file, key and reason, no
                                           output directory
 """
@@ -219,6 +222,25 @@ def damaged(whole, study_file, base):
     check("DamagedAndStaleFilesAreFoundAndRerun", results(d) == base, "results after the rerun differ")
 
 
+def headings(dir_):
+    d = fresh("headings")
+    text = STUDY.format(scene=SCENE, second="H-0.7e6", second_H="0.7e6").replace(
+        "settle_s = 1\n", "settle_s = 1\nheadings_deg = [90, 45]\nheading_probability = [3, 1]\n")
+    rc, out, err = run("sweep", study(os.path.join(dir_, "headings.toml"), text=text), "--out", d, "--quiet")
+    check("HeadingsSplitTheCellsProbability", rc == 0 and "24 tasks" in out, f"24 tasks, exit 0 expected: {rc} {out} {err}")
+    rows = json.load(open(os.path.join(d, "results", "H-1.018e6", "cells.json")))
+    got = [(r["cell"], r["heading"], r["heading_deg"], round(r["probability"], 12)) for r in rows]
+    want = [(0, 0, 90.0, 0.375), (0, 1, 45.0, 0.125), (1, 0, 90.0, 0.225), (1, 1, 45.0, 0.075), (2, 0, 90.0, 0.15),
+            (2, 1, 45.0, 0.05)]
+    check("HeadingsSplitTheCellsProbability", got == want, f"rows {got}, expected {want}")
+    scene = json.load(open(os.path.join(d, "tasks", "H-1.018e6", "c0-h1-r0.json")))["scene"]
+    check("HeadingsSplitTheCellsProbability", re.search(r"\[course\][^\[]*heading_deg = 45\.0", scene) is not None,
+          "[course] heading_deg = 45.0 expected in the task's scene")
+    check("HeadingsSplitTheCellsProbability",
+          rows[0]["mean"]["roll_rms_unstabilized_rad"] != rows[1]["mean"]["roll_rms_unstabilized_rad"],
+          "the same unstabilized roll at 90 and 45 degrees: the heading did not reach the sea")
+
+
 BAD = [  # (what, replace this, with this, the message must hold all of these)
     ("missing name", 'name = "sweep-test"\n', "", ["[study] name: is missing"]),
     ("wrong type", "seeds_per_cell = 2", 'seeds_per_cell = "2"', ["[study] seeds_per_cell", "must be an integer"]),
@@ -275,6 +297,7 @@ def main():
     resume(study_file, base)
     failing_variant(WORK)
     damaged(whole, study_file, base)
+    headings(WORK)
     os.makedirs(os.path.join(WORK, "bad"))
     bad_studies(os.path.join(WORK, "bad"))
     if failures:
