@@ -159,7 +159,7 @@ Calm calm_run(const ShipRollDamperParams& p, const State& x0, double duration) {
 TEST(ShipCourseOracle, TurningAgainstTheRotorCapsizesTheCaseBeyondMinusQOverHAndNotBefore) {
   ShipRollDamperParams p = reference_ship();
   const double bound = p.turn_rate_bound();
-  // The digest's analogy with the monorail's (14.6)-(14.7): Ω3 < −q/H; the model's own bound is the same.
+  // By analogy with the monorail's (14.6)-(14.7) one expects Ω3 < −q/H; the model's own bound is the same.
   EXPECT_DOUBLE_EQ(bound, -p.q / p.H);
   std::printf("bound %.6g rad/s = %.4f deg/s\n", bound, bound / kDeg);
   for (const double f : {0.0, 0.5, 0.9, 0.97, 1.03, 1.1, 1.5}) {
