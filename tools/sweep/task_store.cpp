@@ -45,6 +45,19 @@ int open_temp(const std::string& path, std::string& temp, std::string& error) {
   return fd;
 }
 
+// Opens a temporary file beside `path` and writes `text` to disk (fsync); -1 with `error`, the file removed.
+int write_temp(const std::string& path, const std::string& text, std::string& temp, std::string& error) {
+  const int fd = open_temp(path, temp, error);
+  if (fd < 0) return -1;
+  if (!write_all(fd, text) || ::fsync(fd) != 0) {
+    error = "cannot write " + temp + ": " + std::strerror(errno);
+    ::close(fd);
+    ::unlink(temp.c_str());
+    return -1;
+  }
+  return fd;
+}
+
 bool finish(int fd, const std::string& temp, const std::string& path, std::string& error) {
   if (::close(fd) != 0) {
     error = "cannot write " + temp + ": " + std::strerror(errno);
@@ -71,14 +84,8 @@ std::string task_path(const std::string& dir, const Study& s, const Task& t) {
 
 bool write_text_atomic(const std::string& path, const std::string& text, std::string& error) {
   std::string temp;
-  const int fd = open_temp(path, temp, error);
+  const int fd = write_temp(path, text, temp, error);
   if (fd < 0) return false;
-  if (!write_all(fd, text) || ::fsync(fd) != 0) {
-    error = "cannot write " + temp + ": " + std::strerror(errno);
-    ::close(fd);
-    ::unlink(temp.c_str());
-    return false;
-  }
   return finish(fd, temp, path, error);
 }
 
@@ -99,14 +106,8 @@ bool write_task_file(const std::string& path, nlohmann::json record, double& wri
   text.replace(at, placeholder.size(), "\"write_s\": 0." + std::string(kWidth - 2, '0'));
   const std::size_t value_at = at + placeholder.size() - 3;
   std::string temp;
-  const int fd = open_temp(path, temp, error);
+  const int fd = write_temp(path, text, temp, error);
   if (fd < 0) return false;
-  if (!write_all(fd, text) || ::fsync(fd) != 0) {
-    error = "cannot write " + temp + ": " + std::strerror(errno);
-    ::close(fd);
-    ::unlink(temp.c_str());
-    return false;
-  }
   write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   char value[kWidth + 1];
   std::snprintf(value, sizeof value, "%.12f", std::min(write_s, 9.999999999999));
