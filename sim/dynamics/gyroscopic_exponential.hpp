@@ -27,6 +27,7 @@
 #include <concepts>
 
 #include "sim/dynamics/damped_gyroscopic_flow.hpp"
+#include "sim/dynamics/step_start.hpp"
 
 namespace gyrostab::dynamics {
 
@@ -40,6 +41,7 @@ class GyroscopicExponential {
   explicit GyroscopicExponential(const Model& model) : model_(model) {}
 
   void step(double t, double h, State& x) {
+    begin_step(model_, t, h, x);
     flow(x, stage(t, x), x, 0.5 * h, mid_);
     flow(mid_, stage(t + 0.5 * h, mid_), x, h, next_);
     x = next_;

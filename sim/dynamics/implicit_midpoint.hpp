@@ -17,6 +17,8 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "sim/dynamics/step_start.hpp"
+
 namespace gyrostab::dynamics {
 
 template <class Model>
@@ -53,6 +55,7 @@ class ImplicitMidpoint {
   explicit ImplicitMidpoint(const Model& model) : model_(model) {}
 
   void step(double t, double h, State& x) {
+    begin_step(model_, t, h, x);
     const double tm = t + 0.5 * h;
     if constexpr (HasAnalyticJacobian<Model>) {
       model_.jacobian(tm, x, J_);

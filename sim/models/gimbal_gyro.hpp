@@ -17,16 +17,21 @@
 // Derived: A = A^A + A^J + A^R, B = B^J + A^R, P = A^A + C^J, Q = A^R + A^J - C^J, outer-axis inertia
 // I(β) = A cos²β + P sin²β.
 // Assumptions (§4.2): axes intersect, bodies rigid, principal axes along the gimbal axes, rotor symmetric.
-// Coulomb friction is regularised: r·v/sqrt(v² + v_c²) with v_c = `coulomb_velocity` (a true stick-slip
-// model arrives with the gimbal drive).
+// Coulomb friction r1, r2 (§11.2.2, (11.6)-(11.18)): stick-slip by default (friction_model kStickSlip,
+// sim/drives/gimbal_bearings.hpp, decided once per integrator step in begin_step with the axis inertias
+// I(β), B): an axis is held while its net other torque stays within r, so a torque below friction moves
+// nothing. kSmooth keeps the regularised r·v/sqrt(v² + v_c²), v_c = `coulomb_velocity`: viscous r/v_c at
+// small rates, under which a torque below friction still precesses (creeps) — for comparison only.
 // Oracles: tests/oracle/gimbal_gyro_test.cpp — quartic (10.14), kinetic drift (4.67), viscous nutation
 // decay (A d2 + B d1)/(2AB), Coulomb linear decay (§11.2.2), torque-step transient
-// (docs/models/gimbal-gyro.md#precession-model-p0).
+// (docs/models/gimbal-gyro.md#precession-model-p0); tests/oracle/gimbal_stick_slip_test.cpp — the
+// stick/slip threshold r1 (no motion below it, the drift (M1 − r1)/H of (11.11)-(11.15) above it).
 // Docs: docs/models/gimbal-gyro.md#full-model
 #pragma once
 
 #include <cmath>
 
+#include "sim/drives/gimbal_bearings.hpp"
 #include "sim/dynamics/damped_gyroscopic_flow.hpp"
 #include "sim/models/base_motion.hpp"
 
@@ -39,7 +44,9 @@ struct GimbalGyroParams {
   double Gs{0.0};                       // weight × centre-of-mass offset along the rotor axis [N m]
   double d1{0.0}, d2{0.0};              // viscous friction, outer / inner bearing [N m s/rad]
   double r1{0.0}, r2{0.0};              // Coulomb friction, outer / inner bearing [N m]
-  double coulomb_velocity{1e-4};        // regularisation speed of the Coulomb law [rad/s]
+  drives::CoulombModel friction_model{drives::CoulombModel::kStickSlip};
+  double stick_velocity{1e-9};          // v_st, stick-slip dead band [rad/s]
+  double coulomb_velocity{1e-4};        // regularisation speed of the smooth Coulomb law [rad/s]
 
   double A() const { return AA + AJ + AR; }
   double B() const { return BJ + AR; }
@@ -65,7 +72,9 @@ class GimbalGyro {
   static constexpr const char* kName = "gimbal-gyro";
 
   explicit GimbalGyro(const GimbalGyroParams& p = {}, const Base& base = {})
-      : p_(p), base_(base), I1_(p.AJ + p.AR), I2_(p.BJ + p.AR), I3_(p.CJ) {}
+      : p_(p), base_(base), I1_(p.AJ + p.AR), I2_(p.BJ + p.AR), I3_(p.CJ),
+        bearings_(p.r1, p.r2, p.stick_velocity),
+        stick_slip_(p.friction_model == drives::CoulombModel::kStickSlip && bearings_.active()) {}
 
   GimbalTorques torques{};  // inputs, held between steps
 
@@ -106,9 +115,9 @@ class GimbalGyro {
     const double eJ2 = I2_ * dJ2 + (j3 * L1 - j1 * L3);
     const double eJ3 = I3_ * dJ3 + torques.M3 + (j1 * L2 - j2 * L1);
     // Generalised active forces: motors, gravity/specific force (potential Gs·(e3_J · up)), friction.
-    const double Qa = torques.M1 + p_.Gs * cb * (ca * b.up_B[1] + sa * b.up_B[2]) - p_.d1 * u - coulomb(p_.r1, u);
+    const double Qa = torques.M1 + p_.Gs * cb * (ca * b.up_B[1] + sa * b.up_B[2]) - p_.d1 * u - coulomb(0, p_.r1, u);
     const double Qb = torques.M2 - p_.Gs * (cb * b.up_B[0] + sa * sb * b.up_B[1] - ca * sb * b.up_B[2]) -
-                      p_.d2 * w - coulomb(p_.r2, w);
+                      p_.d2 * w - coulomb(1, p_.r2, w);
     const double M11 = p_.AA + I1_ * cb * cb + I3_ * sb * sb;
     dx[0] = u;
     dx[1] = w;
@@ -118,6 +127,22 @@ class GimbalGyro {
     return {x[4] * cb / M11, x[4] * cb / I2_, p_.d1 / M11, p_.d2 / I2_};
   }
   void project(State& /*x*/) const {}
+
+  // Stick-slip (sim/dynamics/step_start.hpp): holds a stuck gimbal (its rate set to 0) and fixes the
+  // Coulomb torques for [t, t + h] from the generalised net torques without friction at the step start,
+  // I(β) α'' and B β'' (the mass matrix is diagonal in these coordinates).
+  void begin_step(double t, double h, State& x) const {
+    if (!stick_slip_) return;
+    bearings_.begin_step(h, x[2], x[3], [&] {
+      State dx;
+      (void)derivative_with_pair(t, x, dx);
+      const double sb = std::sin(x[1]), cb = std::cos(x[1]);
+      const double M11 = p_.AA + I1_ * cb * cb + I3_ * sb * sb;
+      return drives::AxisLoads{{M11 * dx[2], I2_ * dx[3]}, {M11, I2_}};
+    });
+  }
+  // The bearings of the current step (stuck flags, held torques); stick-slip only.
+  const drives::GimbalBearings& bearings() const { return bearings_; }
 
   // The fast linear part at the current β: α'' ∋ -a β' - p α', β'' ∋ +b α' - q β' with
   // a = H cosβ/I(β), b = H cosβ/B, p = d1/I(β), q = d2/B; sqrt(ab) = H cosβ/sqrt(I(β) B) is the nutation
@@ -143,14 +168,20 @@ class GimbalGyro {
   }
 
  private:
-  double coulomb(double r, double v) const {
+  // The Coulomb torque opposing axis `axis` at rate v, subtracted from its generalised force [N m].
+  double coulomb(int axis, double r, double v) const {
     if (r == 0.0) return 0.0;
+    if (stick_slip_) return -bearings_.torque(axis);
     return r * v / std::sqrt(v * v + p_.coulomb_velocity * p_.coulomb_velocity);
   }
 
   GimbalGyroParams p_;
   Base base_;
   double I1_, I2_, I3_;
+  // The integrators hold the model const; the step's friction is a function of the step-start state and
+  // the held inputs (like them, set between steps), so re-integrating from a saved state reproduces it.
+  mutable drives::GimbalBearings bearings_;
+  bool stick_slip_;
 };
 
 }  // namespace gyrostab::models

@@ -15,8 +15,13 @@
 // Torques (M1 about axis 1, M2 about axis 2), the rows of (12.35) that are physics of the instrument:
 //   row 1, pendulous rotor case (CoM below the pivot):  −c (α − α_L),      −c (β − β_L)
 //   row 2, viscous bearing friction:                     −d1 α',            −d2 β'
-//   row 3, Coulomb bearing friction (regularized):       −r1 sat(α'/ε),     −r2 sat(β'/ε)
+//   row 3, Coulomb bearing friction:                     −r1 sgn α',        −r2 sgn β'
 //   + the torquer commands M1, M2 of the correction law (all five rows, firmware).
+// Row 3 is stick-slip by default (friction_model kStickSlip, sim/drives/gimbal_bearings.hpp, decided once per
+// step in begin_step): an axis whose net other torque stays within r is held, so the erection stops inside
+// the dead zone of Fig. 12.12 — with the linear correction the band |f2 e1| ≤ r2, |f1 e2| ≤ r1 ((11.16)-(11.18)
+// with the correction in place of c) — instead of creeping through it. kSmooth keeps r sat(α'/ε): viscous r/ε
+// below ε, a creep of the order of the torque/(r/ε), for comparison only.
 // Full form: (10.22) with these torques. Precession form (A = B = 0, the book's (12.35)-(12.51)): the rates
 // from gyro_frame_precession_rates (viscous rows solved exactly); Coulomb friction is refused there (the
 // reduced form cannot resolve sticking — use the full form).
@@ -32,20 +37,23 @@
 // State x = [α (rad), β (rad), α' (rad/s), β' (rad/s)] — relative to the frame. Precession form: x[2], x[3]
 // are unused (kept 0); rates() computes the rates.
 // Parameters (SI): GyroFrameParams A, B [kg m²], H [N m s]; c pendulous moment m g s [N m/rad]; d1, d2
-// [N m s/rad]; r1, r2 [N m]; ε = coulomb_rate [rad/s] (below it the Coulomb torque is linear — a rate
-// resolution, documented, not a physical viscous friction).
+// [N m s/rad]; r1, r2 [N m]; friction_model; stick_rate v_st [rad/s] (stick-slip: Karnopp's dead band);
+// ε = coulomb_rate [rad/s] (smooth: below it the Coulomb torque is linear, a viscous r/ε — not physical).
 // Inputs: FrameInputs (Ω, Ω', f over the step), torquer commands M1, M2 [N m] (zero-order hold).
 // Assumptions: the book's — small angles, constant H, c constant (the load-factor change of the pendulous
 // torque in a banked turn is neglected, as in (12.44)); the gimbal (kinematic) error of §1.1 is not modelled.
 // Oracle: tests/oracle/gyro_vertical_test.cpp — steady-turn equilibrium z_G (12.47), resonance at ω = −ω^P,
 // the δ = 0 and astatic limits (12.48)-(12.49), the deceleration response (12.41)-(12.42), linear-correction
-// decay (corrected pairing, see firmware/control/gyro_vertical_correction.hpp), full vs precession form.
+// decay (corrected pairing, see firmware/control/gyro_vertical_correction.hpp), full vs precession form;
+// tests/oracle/gimbal_stick_slip_test.cpp — the plant's dead zone (stuck inside the band, erects outside it,
+// the smooth model's creep).
 // Docs: docs/models/gyro-vertical.md#the-gyro-vertical
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 
+#include "sim/drives/gimbal_bearings.hpp"
 #include "sim/models/gyro_in_rotating_frame.hpp"
 
 namespace gyrostab::models {
@@ -55,7 +63,9 @@ struct GyroVerticalParams {
   double c{2.5e-3};           // pendulous moment m g s, row 1 [N m/rad]
   double d1{0.0}, d2{0.0};    // viscous bearing friction, row 2 [N m s/rad]
   double r1{0.0}, r2{0.0};    // Coulomb bearing friction, row 3 [N m]
-  double coulomb_rate{1e-4};  // ε of sat(α'/ε) [rad/s]
+  drives::CoulombModel friction_model{drives::CoulombModel::kStickSlip};
+  double stick_rate{1e-9};    // v_st, stick-slip dead band [rad/s]
+  double coulomb_rate{1e-4};  // ε of sat(α'/ε), smooth model only [rad/s]
   InstrumentFidelity fidelity{InstrumentFidelity::kFull};
 
   // nullptr if usable, else why not (scene validation).
@@ -64,6 +74,7 @@ struct GyroVerticalParams {
     const auto fin = [](double v) { return std::isfinite(v); };
     if (!(fin(r1) && r1 >= 0.0 && fin(r2) && r2 >= 0.0)) return "r1, r2 must be finite and >= 0";
     if (!(fin(coulomb_rate) && coulomb_rate > 0.0)) return "coulomb_rate must be finite and > 0";
+    if (!(fin(stick_rate) && stick_rate > 0.0)) return "stick_rate must be finite and > 0";
     if (fidelity == InstrumentFidelity::kPrecession && (r1 > 0.0 || r2 > 0.0))
       return "Coulomb friction (r1, r2) needs the full form: the precession form cannot resolve sticking";
     return nullptr;
@@ -92,7 +103,10 @@ class GyroVertical {
   // The state's components, by name.
   static constexpr int kAlpha = 0, kBeta = 1, kAlphaRate = 2, kBetaRate = 3;
 
-  explicit GyroVertical(const GyroVerticalParams& p = {}) : p_(p) {}
+  explicit GyroVertical(const GyroVerticalParams& p = {})
+      : p_(p), bearings_(p.r1, p.r2, p.stick_rate),
+        stick_slip_(p.friction_model == drives::CoulombModel::kStickSlip &&
+                    p.fidelity == InstrumentFidelity::kFull && bearings_.active()) {}
 
   GyroVerticalInputs inputs{};  // held between steps
 
@@ -106,16 +120,36 @@ class GyroVertical {
 
   void derivative(double t, const State& x, State& dx) const {
     const FrameSample w = inputs.frame.at(t);
-    const ApparentVertical L = apparent_vertical(w.f);
-    const double M1s = -p_.c * (x[0] - L.alpha_L) + inputs.M1;
-    const double M2s = -p_.c * (x[1] - L.beta_L) + inputs.M2;
+    double M1s, M2s;
+    static_torques(w, x, M1s, M2s);
     const auto coulomb = [this](double alpha_rate, double beta_rate, double& F1, double& F2) {
-      F1 = p_.r1 * sat(alpha_rate / p_.coulomb_rate);
-      F2 = p_.r2 * sat(beta_rate / p_.coulomb_rate);
+      if (stick_slip_) {
+        F1 = -bearings_.torque(0);
+        F2 = -bearings_.torque(1);
+      } else {
+        F1 = p_.r1 * sat(alpha_rate / p_.coulomb_rate);
+        F2 = p_.r2 * sat(beta_rate / p_.coulomb_rate);
+      }
     };
     gyro_frame_derivative(p_.gyro, p_.fidelity, w, x, M1s, M2s, p_.d1, p_.d2, dx, coulomb);
   }
   void project(State&) const {}
+
+  // Stick-slip (sim/dynamics/step_start.hpp): holds a stuck gimbal (its rate set to 0) and fixes row 3's
+  // torques for [t, t + h] from the net torques (10.22) at the step start, without friction.
+  void begin_step(double t, double h, State& x) const {
+    if (!stick_slip_) return;
+    bearings_.begin_step(h, x[kAlphaRate], x[kBetaRate], [&] {
+      const FrameSample w = inputs.frame.at(t);
+      double M1s, M2s, a1, a2;
+      static_torques(w, x, M1s, M2s);
+      gyro_frame_accelerations(p_.gyro, w, x[0], x[1], x[2], x[3], M1s - p_.d1 * x[2], M2s - p_.d2 * x[3], a1, a2);
+      return drives::AxisLoads{{p_.gyro.A * a1, p_.gyro.B * a2}, {p_.gyro.A, p_.gyro.B}};
+    });
+  }
+  // The bearings of the current step (stuck flags, held torques); stick-slip only.
+  const drives::GimbalBearings& bearings() const { return bearings_; }
+  bool stick_slip() const { return stick_slip_; }
 
   // (α', β') at time t [rad/s]: the state's (full) or the precession solution's.
   void rates(double t, const State& x, double& alpha_rate, double& beta_rate) const {
@@ -131,8 +165,18 @@ class GyroVertical {
 
  private:
   static double sat(double v) { return std::clamp(v, -1.0, 1.0); }
+  // Rows 1 and the torquers: the rate-independent torques [N m].
+  void static_torques(const FrameSample& w, const State& x, double& M1s, double& M2s) const {
+    const ApparentVertical L = apparent_vertical(w.f);
+    M1s = -p_.c * (x[0] - L.alpha_L) + inputs.M1;
+    M2s = -p_.c * (x[1] - L.beta_L) + inputs.M2;
+  }
 
   GyroVerticalParams p_;
+  // The integrators hold the model const; the step's friction is a function of the step-start state and
+  // the held inputs (like them, set between steps), so re-integrating from a saved state reproduces it.
+  mutable drives::GimbalBearings bearings_;
+  bool stick_slip_;
 };
 
 }  // namespace gyrostab::models

@@ -203,6 +203,16 @@ class PowerStabilizer {
     }
   }
   void project(State& /*x*/) const {}
+  // The gyro's stick-slip bearings decide the step with this step's torques (sim/dynamics/step_start.hpp).
+  // Rigid full model only: the scenes give the power stabilizer's bearing friction to its drives
+  // ([drive] coulomb_Nm), and the gyro's own r1, r2 stay 0 in the elastic and precession variants.
+  void begin_step(double t, double h, State& x) const requires(!kElastic && !kPrecession) {
+    GimbalTorques& tq = gyro_.torques;
+    tq.M2 = inputs.M2S + inputs.M2K;
+    tq.M3 = 0.0;
+    tq.M1 = inputs.M1S + driven_torque1();
+    gyro_.begin_step(t, h, x);
+  }
 
   // The fast linear part for dynamics::GyroscopicExponential (rigid variants only; see the header).
   dynamics::GyroscopicPair gyroscopic_pair(const State& x) const requires(!kElastic && !kPrecession) {

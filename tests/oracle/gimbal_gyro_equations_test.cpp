@@ -62,6 +62,9 @@ Gyro make_model(const LagrangeVector& v) {
   p.r1 = v.r1;
   p.r2 = v.r2;
   p.coulomb_velocity = v.coulomb_velocity;
+  // The reference vectors carry the regularised Coulomb term r v/sqrt(v² + v_c²), a function of the state;
+  // the stick-slip torque is a per-step decision (gimbal_stick_slip_test.cpp holds that one).
+  p.friction_model = drives::CoulombModel::kSmooth;
   SampledBase base;
   base.sample.w_B = vec3(v.w_B);
   base.sample.dw_B = vec3(v.dw_B);
