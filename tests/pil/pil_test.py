@@ -46,6 +46,7 @@ SCENES = {
     "monorail": "monorail",
     "servo-gyro": "servo_gyro",
     "gyro-vertical-aircraft-turn": "gyro_vertical",
+    "gyro-vertical-dead-zone": "gyro_vertical",
     "gyrocompass-fixed-base-settling": "gyrocompass",
     "gyrocompass-ship-crossing-latitudes": "gyrocompass",
     "inertial-platform-schuler": "inertial_platform",

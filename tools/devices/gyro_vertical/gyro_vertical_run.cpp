@@ -8,6 +8,12 @@
 // scene's plant and controller for the run modes. (12.47) neglects the Earth and transport rates, whose
 // steady error is ≈ |Ω_h| H/f, and the bearing damping d that keeps the nutation stable, which shifts δ by
 // d(Hω + c)/(fH) relative and leaves the equilibrium unchanged.
+// With bearing Coulomb friction r1, r2 in the plant ("dead_zone"): the band of Fig. 12.12 in which the
+// correction cannot move the gimbals — for the pure linear correction (no pendulous row) the stuck set
+//   |−f1 e2 + T1| ≤ r1,  |f2 e1 + T2| ≤ r2,   T1 = −AΩ1' − HΩ2 − HΩ3 α,  T2 = −BΩ2' + HΩ1 − HΩ3 β
+// (the frame's torques of (10.22) at rest shift it; evaluated at the end's angles)
+// — beside the residual tilt e at the end, how far outside the band it lies, whether the gimbals are held,
+// and the largest gimbal rate over the run's last tenth (the creep: 0 when both are held).
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -51,8 +57,9 @@ class GyroVerticalRun {
   explicit GyroVerticalRun(const GyroVerticalScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
-        window_(s.loop.ticks() / 2, 1000),
-        segments_(s.plant.vehicle) {
+        window_(plant_.model().stick_slip() ? 0 : s.loop.ticks() / 2, 1000),
+        segments_(s.plant.vehicle),
+        late_from_(s.loop.ticks() - s.loop.ticks() / 10) {
     begin_segment(segments_.current());
   }
 
@@ -73,6 +80,11 @@ class GyroVerticalRun {
     ticks_ = tick + 1;
     const double t1 = static_cast<double>(ticks_) * s_.loop.tick_s();
     alpha_peak_ = std::max(alpha_peak_, std::fabs(plant_.alpha_rad()));
+    if (tick >= late_from_) {
+      const Plant::State& x = plant_.state();
+      late_rate_max_ = std::max(
+          {late_rate_max_, std::fabs(x[Plant::Model::kAlphaRate]), std::fabs(x[Plant::Model::kBetaRate])});
+    }
     SegmentRecord& r = segments_.current();
     if (!r.samples) {
       const models::ApparentVertical L = plant_.apparent_vertical();
@@ -128,6 +140,7 @@ class GyroVerticalRun {
     if (gyro.fidelity == models::InstrumentFidelity::kFull) {
       f["nutation_frequency_rad_s"] = models::nutation_frequency(gyro.gyro);
     }
+    if (gyro.r1 > 0.0 || gyro.r2 > 0.0) f["dead_zone"] = dead_zone();
     const double t_now = static_cast<double>(ticks_) * s_.loop.tick_s();
     f["segments"] = segments_json(segments_, t_now, [&](nlohmann::json& j, const SegmentRecord& r) {
       j["turn_rate_rad_s"] = r.turn_rate;
@@ -158,13 +171,24 @@ class GyroVerticalRun {
   }
 
   // report.json "error_estimate": 1000 ticks from the run's middle (the frame's motion is interpolated within
-  // the tick exactly as in the run, so the re-integration at half the step sees the same forcing).
+  // the tick exactly as in the run, so the re-integration at half the step sees the same forcing). With
+  // stick-slip friction the window is the run's first second instead — the breakaway from rest and the
+  // nutation's rate reversals, where the stick and landing decisions happen (later the gimbals are often
+  // held and the estimate would be 0 for want of events) — and, since those decisions fall on step
+  // boundaries, an event is located to within a step: first order there, Richardson's factor is order 1's
+  // (2, not 16/15); the estimate states the order it assumed.
   nlohmann::json error_estimate() const {
     const auto apply = [](Plant::Model& m, const Plant::Inputs& in) { m.inputs = in; };
-    return error_estimate_json<4>(
-        window_.estimate<dynamics::Rk4>(plant_.model(), apply, s_.loop.tick_ns, s_.loop.substeps, 4),
+    const int order = plant_.model().stick_slip() ? 1 : 4;
+    nlohmann::json e = error_estimate_json<4>(
+        window_.estimate<dynamics::Rk4>(plant_.model(), apply, s_.loop.tick_ns, s_.loop.substeps, order),
         {"alpha_rad", "beta_rad", "alpha_rate_rad_s", "beta_rate_rad_s"},
         "none watched: vehicle motion, correction torques and friction act");
+    if (order == 1) {
+      e["order_note"] =
+          "stick-slip bearing friction: events located to a step, first order (RK4 between them)";
+    }
+    return e;
   }
 
  private:
@@ -177,12 +201,53 @@ class GyroVerticalRun {
     r.beta_end = plant_.beta_rad();
   }
 
+  nlohmann::json dead_zone() const {
+    const firmware::GyroVerticalCorrectionParams& law = s_.controller.law;
+    const models::GyroVerticalParams& gyro = s_.plant.gyro;
+    const bool stick_slip = plant_.model().stick_slip();
+    const double t = static_cast<double>(ticks_) * s_.loop.tick_s();
+    double e1, e2;
+    plant_.model().erection_signal(t, plant_.state(), e1, e2);
+    nlohmann::json j{{"friction_model", stick_slip ? "stick_slip" : "smooth"},
+                     {"r1_Nm", gyro.r1},
+                     {"r2_Nm", gyro.r2},
+                     {"residual_tilt_rad", {e1, e2}},
+                     {"late_rate_max_rad_s", late_rate_max_}};
+    if (stick_slip) {
+      j["held"] = {plant_.model().bearings().stuck(0), plant_.model().bearings().stuck(1)};
+    }
+    const bool pure_correction = gyro.c == 0.0 && law.c1 == 0.0 && law.c2 == 0.0 && law.f1 > 0.0 &&
+                                 law.f2 > 0.0 && law.g1 == 0.0 && law.g2 == 0.0 && law.r1 == 0.0 &&
+                                 law.r2 == 0.0 && law.d1 == 0.0 && law.d2 == 0.0;
+    if (!pure_correction) {
+      j["band"] = nullptr;
+      j["band_why_not"] = "the band is given for the linear correction alone (rows 3 + 4, Fig. 12.12)";
+      return j;
+    }
+    // The frame's torques of (10.22) at rest, at the end's angles: what the bearings hold besides f·e.
+    const models::FrameSample& w = plant_.frame();
+    const double H = gyro.gyro.H, alpha = plant_.alpha_rad(), beta = plant_.beta_rad();
+    const double T1 = -gyro.gyro.A * w.Omega_dot.x() - H * w.Omega.y() - H * w.Omega.z() * alpha;
+    const double T2 = -gyro.gyro.B * w.Omega_dot.y() + H * w.Omega.x() - H * w.Omega.z() * beta;
+    const double e1_lo = (-gyro.r2 - T2) / law.f2, e1_hi = (gyro.r2 - T2) / law.f2;
+    const double e2_lo = (-gyro.r1 + T1) / law.f1, e2_hi = (gyro.r1 + T1) / law.f1;
+    j["band"] = {{"e1_rad", {e1_lo, e1_hi}},
+                 {"e2_rad", {e2_lo, e2_hi}},
+                 {"half_width_rad", {gyro.r2 / law.f2, gyro.r1 / law.f1}}};
+    const double out1 = std::max({0.0, e1_lo - e1, e1 - e1_hi}),
+                 out2 = std::max({0.0, e2_lo - e2, e2 - e2_hi});
+    j["outside_band_rad"] = std::hypot(out1, out2);
+    return j;
+  }
+
   const GyroVerticalScene& s_;
   Plant plant_;
   analysis::HalfStepWindow<Plant::Model, Plant::Inputs> window_;
   msg::ActuatorFrame last_{};
   analysis::ManoeuvreSegmentLog<SegmentRecord> segments_;
   double alpha_peak_{0.0};
+  std::int64_t late_from_;
+  double late_rate_max_{0.0};
   std::int64_t ticks_{0};
 };
 

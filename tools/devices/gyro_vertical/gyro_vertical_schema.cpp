@@ -19,6 +19,7 @@ using Controller = firmware::BasicGyroVerticalController<firmware::posix::Monoto
 
 constexpr std::string_view kFidelities[] = {"full", "precession"};
 constexpr std::string_view kCutouts[] = {"both", "axis1"};
+constexpr std::string_view kFrictionModels[] = {"stick_slip", "smooth"};  // drives::CoulombModel's order
 
 constexpr schema::Field<S> kFields[] = {
     F::choice("gyro", "fidelity", kFidelities,
@@ -42,8 +43,19 @@ constexpr schema::Field<S> kFields[] = {
               "Coulomb bearing friction axis 1, row 3 (full form)", GS_NUMBER(plant.gyro.r1)),
     F::number("gyro", "r2", "N m", Range::non_negative(),
               "Coulomb bearing friction axis 2, row 3 (full form)", GS_NUMBER(plant.gyro.r2)),
+    F::choice(
+        "gyro", "friction_model", kFrictionModels,
+        "row 3 as `stick_slip` (a gimbal is held while its net torque stays within r: the dead zone of "
+        "Fig. 12.12, sim/drives/gimbal_bearings.hpp) or `smooth` r sat(α'/ε) (viscous r/ε below ε: creeps "
+        "through the dead zone; for comparison)",
+        GS_CHOICE(plant.gyro.friction_model)),
+    F::number(
+        "gyro", "stick_rate", "rad/s", Range::positive(),
+        "stick_slip: Karnopp dead band v_st — a gimbal slower than this may be held; at the dead zone's "
+        "corner the gyro slides along the band's edge at less than v_st",
+        GS_NUMBER(plant.gyro.stick_rate)),
     F::number("gyro", "coulomb_rate", "rad/s", Range::positive(),
-              "rate below which the Coulomb torque is linear (a resolution)",
+              "smooth: rate ε below which the Coulomb torque is linear (a resolution, not physics)",
               GS_NUMBER(plant.gyro.coulomb_rate)),
     F::number("gyro", "alpha0_deg", "deg", Range::closed(-30.0, 30.0), "initial tilt about axis 1",
               GS_NUMBER(plant.alpha0))

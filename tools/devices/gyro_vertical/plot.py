@@ -7,6 +7,9 @@ Rows (the whole flight; the manoeuvre segments of figures.segments shaded, turns
                the largest indicated-bank error and the turn-end errors against the book written on it
   turn rate    the true turn rate and the turn indicator's reading (≈ cos(bank) of it, (15.6)), with the
                correction cut-out threshold
+  dead zone    with bearing Coulomb friction (figures.dead_zone): α and β near the band of Fig. 12.12 in which
+               the correction cannot move the gimbals (shaded per axis), the residual tilt at the end, whether
+               the gimbals are held, and the largest gimbal rate over the last tenth of the run (the creep)
   torques      the erection torques M1, M2 against the torquer limit
   status       event lanes of the status bits, only if one is ever set (cut-out, torquer limited)
 Limits (tools/plot/LIMITS.md): torquer_limit_Nm, turn_cutout_rad_s; absent, no line.
@@ -38,7 +41,11 @@ def plot(run):
     rows = []
     if a is not None or b is not None:
         rows.append(("tilt", 1.6, False))
-    if turn is not None or ind is not None:
+    dz = run.figures.get("dead_zone")
+    dz = dz if isinstance(dz, dict) else None
+    if dz is not None and (a is not None or b is not None):
+        rows.append(("deadzone", 1.1, False))
+    if (turn is not None or ind is not None) and dz is None:
         rows.append(("turn", 0.8, False))
     if m1 is not None or m2 is not None:
         rows.append(("torque", 0.8, False))
@@ -106,6 +113,9 @@ def plot(run):
         lo, hi = ax.get_ylim()
         ax.set_ylim(lo - 0.45 * (hi - lo), hi + 0.25 * (hi - lo))  # room for the notes
 
+    if "deadzone" in L.rows:
+        _dead_zone(L["deadzone"].whole, run, dz, a, b)
+
     if "turn" in L.rows:
         ax = L["turn"].whole
         if turn is not None:
@@ -138,3 +148,55 @@ def plot(run):
     pl.title(L.fig, run, "gyro vertical (aircraft)", None)
     pl.limits_missing_note(L.fig, run, ["torquer_limit_Nm"])
     return L.finish()
+
+
+def _pair(v):
+    if isinstance(v, list) and len(v) == 2 and all(isinstance(x, (int, float)) for x in v):
+        return v
+    return None
+
+
+def _dead_zone(ax, run, dz, a, b):
+    deg = pl.DEG
+    band = dz.get("band") if isinstance(dz.get("band"), dict) else None
+    widths = []
+    if band is not None:
+        for key, color, name in (("e1_rad", pl.C_MAIN, "α"), ("e2_rad", pl.C_SECOND, "β")):
+            lo_hi = _pair(band.get(key))
+            if lo_hi is not None:
+                ax.axhspan(lo_hi[0] * deg, lo_hi[1] * deg, color=color, alpha=0.10,
+                           label="dead zone of %s (Fig. 12.12)" % name)
+                widths.append(abs(lo_hi[1] - lo_hi[0]) / 2)
+    if a is not None:
+        pl.plot_t(ax, run, a * deg, color=pl.C_MAIN, lw=1.1, label="α")
+    if b is not None:
+        pl.plot_t(ax, run, b * deg, color=pl.C_SECOND, lw=1.1, label="β")
+    res = _pair(dz.get("residual_tilt_rad"))
+    lines = ["bearing friction: %s, r = %s / %s N m" % (dz.get("friction_model"), pl.num(dz.get("r1_Nm")),
+                                                        pl.num(dz.get("r2_Nm")))]
+    if res is not None:
+        t_end = run.t_end * run.time[0]
+        ax.plot([t_end, t_end], [res[0] * deg, res[1] * deg], "o", color=pl.C_BOOK, ms=5, zorder=8,
+                label="residual tilt")
+        lines.append("residual tilt e = (%s°, %s°)" % (pl.num(res[0] * deg, 4), pl.num(res[1] * deg, 4)))
+    if band is not None:
+        hw = _pair(band.get("half_width_rad"))
+        if hw is not None:
+            lines.append("band half-widths r2/f2, r1/f1 = %s°, %s°" % (pl.num(hw[0] * deg), pl.num(hw[1] * deg)))
+        out = dz.get("outside_band_rad")
+        if isinstance(out, (int, float)):
+            lines.append("outside the band by %s rad" % pl.num(out))
+    elif isinstance(dz.get("band_why_not"), str):
+        lines.append(dz["band_why_not"])
+    held = dz.get("held")
+    if isinstance(held, list):
+        lines.append("gimbals held at the end: %s" % ", ".join("yes" if h else "no" for h in held))
+    creep = dz.get("late_rate_max_rad_s")
+    if isinstance(creep, (int, float)):
+        lines.append("largest gimbal rate over the last tenth: %s rad/s" % pl.num(creep))
+    pl.note(ax, "\n".join(lines), loc="upper right", size=7.5)
+    if widths:
+        w = max(widths) * deg
+        ax.set_ylim(-2.6 * w, 5.2 * w)  # room for the note above the band
+    pl.ylabel(ax, "tilt near the\ndead zone [deg]")
+    pl.legend(ax, loc="lower right", ncol=3)
