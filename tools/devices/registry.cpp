@@ -11,7 +11,9 @@ namespace gyrostab::tools {
   X(kGyroVertical)          \
   X(kGyrocompass)           \
   X(kInertialPlatform)      \
-  X(kGyroPendulum)
+  X(kGyroPendulum)          \
+  X(kGimbalError)           \
+  X(kUGyro)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,

@@ -1,0 +1,165 @@
+// What a U-gyro run reports: the plant of sim/plants/u_gyro_plant.hpp with its meter — over the whole
+// twice-spin periods after the settling time, the output's mean and its component at twice the spin
+// frequency (Fourier sums against the spin angle γ) beside the book's (15.29) through the frame's response
+// (sim/oracles/u_gyro_output.hpp), and the asymmetry (A^R − B^R)/C^R recovered from the measured amplitude.
+// The CSV columns, the half-step error estimate, and the scene's plant and controller for the run modes.
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "firmware/platform/posix/monotonic_clock.hpp"
+#include "sim/analysis/half_step_window.hpp"
+#include "sim/oracles/u_gyro_output.hpp"
+#include "tools/devices/device_scene_of.hpp"
+#include "tools/devices/u_gyro/u_gyro_scene.hpp"
+#include "tools/run/error_estimate_report.hpp"
+
+namespace gyrostab::tools {
+namespace {
+
+using Plant = plants::UGyroPlant;
+// Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
+using Controller = firmware::BasicFreeInstrumentController<firmware::posix::MonotonicClock>;
+
+const std::vector<std::string>& columns() {
+  static const std::vector<std::string> c{"beta_rad", "beta_rate_rad_s", "gyro_torque_Nm",
+                                          "book_torque_Nm", "status_bits"};
+  return c;
+}
+
+// Sums of the output against the twice-spin angle.
+struct HarmonicSums {
+  std::int64_t n{0};
+  double mean{0.0}, cos2{0.0}, sin2{0.0};
+  void add(double beta, double gamma) {
+    ++n;
+    mean += beta;
+    cos2 += beta * std::cos(2.0 * gamma);
+    sin2 += beta * std::sin(2.0 * gamma);
+  }
+};
+
+class UGyroRun {
+ public:
+  explicit UGyroRun(const UGyroScene& s)
+      : s_(s),
+        plant_(s.plant, s.loop.plant_timing()),
+        settle_tick_(static_cast<std::int64_t>(std::llround(s.settle_s / s.loop.tick_s()))),
+        window_(std::min(settle_tick_, s.loop.ticks() / 2),
+                std::max<std::int64_t>(1, static_cast<std::int64_t>(0.05 / s.loop.tick_s()))) {}
+
+  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const msg::ActuatorFrame& cmd) {
+    last_ = cmd;
+    plant_.actuate(cmd);
+  }
+  void advance(std::int64_t tick) {
+    window_.before_tick(tick, plant_.state(), plant_.held_inputs());
+    plant_.advance(tick);
+    window_.after_tick(tick, plant_.state());
+    ticks_ = tick + 1;
+    if (ticks_ < settle_tick_) return;
+    const double gamma = plant_.spin_angle_rad();
+    if (!started_) {
+      started_ = true;
+      gamma_start_ = gamma;
+    }
+    // A completed twice-spin period (half a revolution): the samples so far cover whole periods; keep them.
+    const auto periods = static_cast<std::int64_t>(std::floor(std::fabs(gamma - gamma_start_) / std::numbers::pi));
+    if (periods > periods_) {
+      periods_ = periods;
+      done_ = run_;
+    }
+    run_.add(plant_.beta_rad(), gamma);
+  }
+  bool finite() const { return plant_.finite(); }
+
+  static constexpr int kGuardedStates = Plant::kGuardedStates;
+  static const char* state_name(int i) { return Plant::state_name(i); }
+  double state_value(int i) const { return plant_.state_value(i); }
+
+  void record(double* row) const {
+    row[0] = plant_.beta_rad();
+    row[1] = plant_.beta_rate_rad_s();
+    row[2] = plant_.gyro_torque_Nm();
+    row[3] = oracles::u_gyro_output_torque(s_.plant.gyro, s_.plant.table_rate, plant_.spin_angle_rad());
+    row[4] = static_cast<double>(last_.status);
+  }
+
+  nlohmann::json figures() const {
+    const models::UGyroParams& g = s_.plant.gyro;
+    const double Omega = s_.plant.table_rate;
+    const double mean_book = oracles::u_gyro_mean_output(g, Omega);
+    const double twice_book = oracles::u_gyro_twice_spin_output(g, Omega);
+    const double twice_coupled = oracles::u_gyro_twice_spin_output_coupled(g, Omega);
+    const double receptance = std::abs(oracles::u_gyro_frame_response(g, 2.0 * g.spin));
+    nlohmann::json f{{"H_Nms", g.H()},
+                     {"asymmetry_book", g.asymmetry()},
+                     {"mean_output_book_rad", mean_book},
+                     {"twice_spin_amplitude_book_rad", twice_book},
+                     {"twice_spin_torque_amplitude_book_Nm", std::fabs(g.asymmetry()) * g.H() * Omega},
+                     {"frame_receptance_at_twice_spin_rad_per_Nm", receptance},
+                     {"twice_spin_amplitude_coupled_rad", twice_coupled},
+                     {"inertia_coupling_rel", oracles::u_gyro_inertia_coupling(g)},
+                     {"periods", periods_},
+                     {"statistics_from_s", s_.settle_s},
+                     {"ticks", ticks_}};
+    const char* measured[] = {"mean_output_rad", "twice_spin_amplitude_rad", "twice_spin_amplitude_rel_error",
+                              "twice_spin_amplitude_coupled_rel_error",
+                              "mean_output_rel_error", "asymmetry_measured"};
+    const HarmonicSums& d = done_;
+    if (d.n == 0) {  // no whole twice-spin period after settling (a short run)
+      for (const char* key : measured) f[key] = nullptr;
+      return f;
+    }
+    const double n = static_cast<double>(d.n);
+    const double mean = d.mean / n, twice = 2.0 / n * std::hypot(d.cos2, d.sin2);
+    f["mean_output_rad"] = mean;
+    f["twice_spin_amplitude_rad"] = twice;
+    f["mean_output_rel_error"] = mean_book != 0.0 ? (mean - mean_book) / mean_book : 0.0;
+    f["twice_spin_amplitude_rel_error"] = twice_book != 0.0 ? (twice - twice_book) / twice_book : 0.0;
+    f["twice_spin_amplitude_coupled_rel_error"] = twice_coupled != 0.0 ? (twice - twice_coupled) / twice_coupled : 0.0;
+    // |ε| recovered from the output: the twice-spin amplitude over the frame's receptance and H Ω.
+    f["asymmetry_measured"] = Omega != 0.0 ? twice / (receptance * g.H() * std::fabs(Omega)) : 0.0;
+    return f;
+  }
+
+  // report.json "error_estimate": 50 ms (ten twice-spin periods of the scene) from the end of settling.
+  nlohmann::json error_estimate() const {
+    const auto apply = [](Plant::Dynamics& m, const Plant::HeldInputs& in) { m.inputs.Omega = in.Omega; };
+    return error_estimate_json<3>(
+        window_.estimate<dynamics::Rk4>(plant_.dynamics(), apply, s_.loop.tick_ns, s_.loop.substeps, 4),
+        {"beta_rad", "beta_rate_rad_s", "gamma_rad"}, "none watched: the spin motor and the damper act");
+  }
+
+ private:
+  const UGyroScene& s_;
+  Plant plant_;
+  std::int64_t settle_tick_;
+  msg::ActuatorFrame last_{};
+  bool started_{false};
+  double gamma_start_{0.0};
+  std::int64_t periods_{0};
+  HarmonicSums run_{}, done_{};  // the sums so far, and at the last completed twice-spin period
+  std::int64_t ticks_{0};
+  analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
+};
+
+struct UGyroTraits {
+  using Scene = UGyroScene;
+  using Binding = UGyroRun;
+  using Controller = tools::Controller;
+  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
+};
+
+}  // namespace
+
+std::unique_ptr<DeviceScene> make_u_gyro_scene(std::unique_ptr<UGyroScene> s) {
+  return std::make_unique<DeviceSceneOf<UGyroTraits>>(std::move(s));
+}
+
+}  // namespace gyrostab::tools
