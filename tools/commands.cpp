@@ -80,9 +80,11 @@ int run_scene(const RunRequest& req) {
       return 2;
     }
     with_text.scene_text = text.str();
+    with_text.scene_file_root = scene_file_dir(req.scene_path);
     return run_scene(with_text);
   }
   SceneReader reader;
+  reader.set_file_root(req.scene_file_root);
   // scene_text set: the scene came from a bus log (gyrostab replay) or was read above; scene_path names it.
   if (!(req.scene_text.empty() ? reader.open(req.scene_path) : reader.parse(req.scene_text, req.scene_path))) {
     print_problems(reader);
