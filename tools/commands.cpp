@@ -39,6 +39,14 @@ std::string ticks_problem(const DeviceScene& scene, std::int64_t ticks) {
     return "--ticks " + std::to_string(ticks) + ": the simulated time would overflow the integer clock (at most " +
            std::to_string(INT64_MAX / loop.tick_ns) + " ticks of " + std::to_string(loop.tick_ns) + " ns)";
   }
+  // Past a recorded motion's last row the interpolant would extrapolate a cubic: refused, not made up.
+  if (const motion::SceneBaseMotion* m = scene.base_motion(); m != nullptr && m->kind == motion::BaseMotionKind::kRecorded) {
+    const double end_s = m->recorded.record()->t.back(), run_s = static_cast<double>(ticks) * loop.tick_s();
+    if (run_s > end_s) {
+      return "--ticks " + std::to_string(ticks) + ": the run (" + std::to_string(run_s) + " s) outlasts the motion record ([motion] file ends at " +
+             std::to_string(end_s) + " s)";
+    }
+  }
   const std::string why = recording_problem(recording_size(ticks, loop.record_every, recorded_columns(scene)));
   return why.empty() ? "" : "--ticks " + std::to_string(ticks) + ": " + why;
 }

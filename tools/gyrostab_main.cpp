@@ -182,6 +182,8 @@ int main(int argc, char** argv) {
   record_cmd->add_option("scene", record.scene_path, "scene file (TOML)")->required();
   record_cmd->add_option("--out", record.out_path, "CSV file to write")->required();
   record_cmd->add_option("--step-s", record.step_s, "sample interval [s] (default 0.01)");
+  record_cmd->add_option("--duration-s", record.duration_s,
+                         "span recorded [s] (default: the scene's duration_s; longer lets --ticks run past it)");
 
   CLI::App* keys_cmd =
       app.add_subcommand("scene-keys", "print docs/scenes.md: every scene key of every device, from the field tables");

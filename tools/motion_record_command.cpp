@@ -27,7 +27,7 @@ int motion_record(const MotionRecordRequest& req) {
                  req.scene_path.c_str());
     return 2;
   }
-  const double duration = scene->loop().duration_s;
+  const double duration = req.duration_s >= 0.0 ? req.duration_s : scene->loop().duration_s;
   // Whole samples past the end, so that the record covers the scene's duration however the step divides it.
   const auto n = static_cast<long long>(std::ceil(duration / req.step_s - 1e-9));
   std::FILE* f = std::fopen(req.out_path.c_str(), "w");
