@@ -39,6 +39,14 @@ std::string ticks_problem(const DeviceScene& scene, std::int64_t ticks) {
     return "--ticks " + std::to_string(ticks) + ": the simulated time would overflow the integer clock (at most " +
            std::to_string(INT64_MAX / loop.tick_ns) + " ticks of " + std::to_string(loop.tick_ns) + " ns)";
   }
+  // Past a recorded motion's last row the interpolant would extrapolate a cubic: refused, not made up.
+  if (const motion::SceneBaseMotion* m = scene.base_motion(); m != nullptr && m->kind == motion::BaseMotionKind::kRecorded) {
+    const double end_s = m->recorded.record()->t.back(), run_s = static_cast<double>(ticks) * loop.tick_s();
+    if (run_s > end_s) {
+      return "--ticks " + std::to_string(ticks) + ": the run (" + std::to_string(run_s) + " s) outlasts the motion record ([motion] file ends at " +
+             std::to_string(end_s) + " s)";
+    }
+  }
   const std::string why = recording_problem(recording_size(ticks, loop.record_every, recorded_columns(scene)));
   return why.empty() ? "" : "--ticks " + std::to_string(ticks) + ": " + why;
 }
@@ -80,9 +88,11 @@ int run_scene(const RunRequest& req) {
       return 2;
     }
     with_text.scene_text = text.str();
+    with_text.scene_file_root = scene_file_dir(req.scene_path);
     return run_scene(with_text);
   }
   SceneReader reader;
+  reader.set_file_root(req.scene_file_root);
   // scene_text set: the scene came from a bus log (gyrostab replay) or was read above; scene_path names it.
   if (!(req.scene_text.empty() ? reader.open(req.scene_path) : reader.parse(req.scene_text, req.scene_path))) {
     print_problems(reader);

@@ -9,6 +9,7 @@
 #include "tools/accuracy/accuracy_command.hpp"
 #include "tools/commands.hpp"
 #include "tools/demo_gimbal_gyro.hpp"
+#include "tools/motion_record_command.hpp"
 #include "tools/replay_command.hpp"
 #include "tools/run/link_cli.hpp"
 #include "tools/run/process_pair.hpp"
@@ -174,11 +175,22 @@ int main(int argc, char** argv) {
       "dbc", "write the DBC file of the CAN FD bus (frame map: ids, lengths, signals, scaling, units, ranges)");
   dbc_cmd->add_option("--out", dbc_out, "file to write (default: standard output)");
 
+  gyrostab::tools::MotionRecordRequest record;
+  CLI::App* record_cmd = app.add_subcommand(
+      "motion-record", "write the base motion a scene's generator produces as a motion record (CSV) that "
+                       "[motion] kind = \"recorded\" replays");
+  record_cmd->add_option("scene", record.scene_path, "scene file (TOML)")->required();
+  record_cmd->add_option("--out", record.out_path, "CSV file to write")->required();
+  record_cmd->add_option("--step-s", record.step_s, "sample interval [s] (default 0.01)");
+  record_cmd->add_option("--duration-s", record.duration_s,
+                         "span recorded [s] (default: the scene's duration_s; longer lets --ticks run past it)");
+
   CLI::App* keys_cmd =
       app.add_subcommand("scene-keys", "print docs/scenes.md: every scene key of every device, from the field tables");
 
   if (refuse_unknown_subcommand(app, argc, argv)) return 2;
   CLI11_PARSE(app, argc, argv);
+  if (record_cmd->parsed()) return gyrostab::tools::motion_record(record);
   if (keys_cmd->parsed()) {
     std::fputs(gyrostab::tools::scenes_markdown().c_str(), stdout);
     return 0;

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "tools/commands.hpp"
+#include "tools/scene/scene_reader.hpp"
 #include "tools/log/bus_log_reader.hpp"
 #include "tools/run/replay_session.hpp"
 #include "tools/run/can_replay.hpp"
@@ -45,6 +46,8 @@ int replay_log(RunRequest req) {
   }
   req.scene_text = reader.scene().toml;
   req.scene_path = req.transport.replay_log + ":scene";
+  // A motion file resolves as it did for the recorded run: against the directory of the scene file it named.
+  if (!reader.scene().source.empty()) req.scene_file_root = scene_file_dir(reader.scene().source);
   return run_scene(req);
 }
 

@@ -1,5 +1,5 @@
 // The two-axis power gyro stabilizer as it runs in a scene (Magnus §14.3, (14.19)-(14.40)): the gimbal gyro
-// of sim/models/power_stabilizer.hpp on a harmonically rolling base, disturbance torque steps on both axes,
+// of sim/models/power_stabilizer.hpp on a moving base (sim/motion/scene_base_motion.hpp), disturbance torque steps on both axes,
 // and the sensors the firmware reads — gimbal encoders (or, with DC drives, the motor-side encoders) and a
 // rate gyro per gimbal axis. The options are template parameters, chosen once at start-up, so an option that
 // is off costs nothing:
@@ -34,6 +34,7 @@
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/base_motion.hpp"
 #include "sim/models/power_stabilizer.hpp"
+#include "sim/motion/scene_base_motion.hpp"
 #include "sim/plants/plant_timing.hpp"
 #include "sim/plants/sensor_frame_header.hpp"
 #include "sim/random/seeded_rng.hpp"
@@ -66,7 +67,7 @@ struct PowerStabilizerPlantParams {
   // axis 2: B^J) and a driven bearing's damping moves into the drive's friction.
   models::GimbalGyroParams gyro{};
   double H{200.0};  // rotor spin momentum [N m s]
-  models::HarmonicBaseRotation base{dynamics::Vec3::UnitX(), 0.0, 0.6, dynamics::Vec3::UnitZ()};
+  motion::SceneBaseMotion base{};  // harmonic roll (amplitude 0: at rest), prescribed or recorded
   PowerDisturbance disturbance{};
   sensors::RateGyroParams rate_gyro{power_stabilizer_rate_gyro()};  // both gimbal axes
   std::int64_t encoder_counts_per_rev{1 << 18};                      // gimbal encoders (torque drives)
@@ -87,7 +88,7 @@ template <class Motor, class Structure, bool kDcDrive, template <class> class In
           class Fidelity = models::FullGimbal>
 class PowerStabilizerPlant {
  public:
-  using Model = models::PowerStabilizer<models::HarmonicBaseRotation, Motor, Structure, Fidelity>;
+  using Model = models::PowerStabilizer<motion::SceneBaseMotion, Motor, Structure, Fidelity>;
   using State = typename Model::State;
   using Inputs = models::PowerStabilizerInputs;
   static constexpr bool kElastic = Model::kElastic;

@@ -14,6 +14,7 @@
 
 #include "hil/can/frame_map.hpp"
 #include "hil/link/actuator_frame_check.hpp"
+#include "sim/motion/scene_base_motion.hpp"
 #include "tools/run/controller_port.hpp"
 #include "tools/run/plant_port.hpp"
 #include "tools/scene/loop_config.hpp"
@@ -51,6 +52,9 @@ class DeviceScene {
   // The controller's configuration as the bytes of its Config struct: what `run --transport target` sends to
   // the device's firmware image (firmware/target/pil_session.hpp). Empty: the device has no firmware image.
   virtual std::vector<std::uint8_t> controller_config() const { return {}; }
+  // The base motion of a device whose base moves (sim/motion/scene_base_motion.hpp), for
+  // `gyrostab motion-record`; nullptr: the device has none.
+  virtual const motion::SceneBaseMotion* base_motion() const { return nullptr; }
 };
 
 // The bytes of a trivially copyable configuration struct (DeviceScene::controller_config).

@@ -16,6 +16,8 @@ struct RunRequest {
   std::string scene_path;
   std::string scene_text;  // the scene's TOML when not read from scene_path (replay: the log's scene event);
                            // a logging run fills it from the file so the bus log holds exactly what ran
+  // With scene_text: the directory its data files (a [motion] file) resolve against; empty: none may be read.
+  std::string scene_file_root;
   std::string out_dir{"out"};
   Role role{Role::kInProcess};  // which part of the loop this process runs (run_role.hpp)
   TransportOptions transport;

@@ -40,6 +40,11 @@ struct SceneReader::Impl {
   std::set<std::string> used;  // "section.key" and "section"
 };
 
+std::string scene_file_dir(const std::string& scene_path) {
+  const std::filesystem::path dir = std::filesystem::path(scene_path).parent_path();
+  return dir.empty() ? std::string(".") : dir.string();
+}
+
 SceneReader::SceneReader() : impl_(std::make_unique<Impl>()) {}
 SceneReader::~SceneReader() = default;
 SceneReader::SceneReader(SceneReader&&) noexcept = default;
@@ -67,6 +72,7 @@ bool SceneReader::open(const std::string& path) {
     errors_.push_back(path + ": cannot read the scene file");
     return false;
   }
+  file_root_ = scene_file_dir(path);
   return parse(text.str(), path);
 }
 

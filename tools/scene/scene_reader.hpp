@@ -29,6 +29,9 @@ struct Range {
   std::string describe() const;
 };
 
+// The directory of a scene file ("." for a bare file name): its data files are resolved against it.
+std::string scene_file_dir(const std::string& scene_path);
+
 class SceneReader {
  public:
   SceneReader();
@@ -64,6 +67,11 @@ class SceneReader {
   // Report sections and keys present in the file but never read.
   void finish();
 
+  // The directory a scene's data files (a [motion] file) are resolved against and confined to; empty: the
+  // scene names no file it may read (text from memory, the fuzz target). open() sets the file's directory.
+  void set_file_root(std::string dir) { file_root_ = std::move(dir); }
+  const std::string& file_root() const { return file_root_; }
+
   bool ok() const { return errors_.empty(); }
   const std::vector<std::string>& errors() const { return errors_; }
   const std::string& name() const { return name_; }
@@ -72,6 +80,7 @@ class SceneReader {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string name_;
+  std::string file_root_;
   std::vector<std::string> errors_;
 };
 

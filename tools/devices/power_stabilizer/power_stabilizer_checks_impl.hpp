@@ -16,7 +16,7 @@
 
 namespace gyrostab::tools::power_stabilizer_checks {
 
-using Base = models::HarmonicBaseRotation;
+using Base = motion::SceneBaseMotion;
 using Controller = firmware::BasicPowerStabilizerController<firmware::posix::MonotonicClock>;
 
 // The loop (14.23) / (14.29) linearised at inner-gimbal angle beta: the gyroscopic coupling H cos β and the
@@ -153,11 +153,10 @@ bool check_reduced(SceneReader& r, PowerStabilizerScene& s) {
   }
   // A torque step M on an astatic gyro: the torqued axis offsets by ≤ 2 M I_other/H², the other axis errs by
   // ≤ M/(H ω_N); the O(ε) error of the slow (precession) response, ε · M/k = M/(H ω_N) per step, adds to both.
-  // A base rolling at Φ sin νt about axis i acts like a torque I_i Φ ν² on that axis.
-  double M1 = std::abs(dist.M1), M2 = std::abs(dist.M2);
-  const auto& base = s.plant.base;
-  const double roll_torque = base.amplitude * base.frequency * base.frequency;
-  if (base.axis_B.x() != 0.0) M1 += A * roll_torque; else M2 += B * roll_torque;
+  // A base turning with angular acceleration Ω̇ acts like a torque I_i |Ω̇_i| on axis i (Φ ν² for a roll
+  // Φ sin νt).
+  const dynamics::Vec3 base_accel = s.plant.base.peak_angular_accel_B(s.loop.duration_s);
+  const double M1 = std::abs(dist.M1) + A * base_accel.x(), M2 = std::abs(dist.M2) + B * base_accel.y();
   const double cross = (M1 + M2) / (He * omega_N);
   const double a_bound = 2.0 * M1 * B / (He * He) + cross;
   const double b_bound = 2.0 * M2 * A / (He * He) + cross;

@@ -38,6 +38,7 @@ class PowerStabilizerDeviceScene final : public DeviceScene {
     return make_controller_port<Controller>(s_->controller);
   }
   std::vector<std::uint8_t> controller_config() const override { return config_bytes(s_->controller); }
+  const motion::SceneBaseMotion* base_motion() const override { return &s_->plant.base; }
 
  private:
   std::unique_ptr<PowerStabilizerScene> s_;

@@ -214,7 +214,11 @@ class PowerStabilizerRun {
     if constexpr (kBackEmf) parts.push_back("back-EMF motor (14.26), current lag neglected");
     if constexpr (kDcDrive) parts.push_back("motor electrics: dc drives on both axes (winding current, gear, friction)");
     if constexpr (kElastic) parts.push_back("structural elasticity: platform on a shaft (14.31)");
-    if (p.base.amplitude > 0.0) parts.push_back("base motion: harmonic roll");
+    if (p.base.kind == motion::BaseMotionKind::kHarmonicRoll && p.base.harmonic.amplitude > 0.0)
+      parts.push_back("base motion: harmonic roll");
+    if (p.base.kind == motion::BaseMotionKind::kPrescribed) parts.push_back("base motion: prescribed yaw, pitch, roll");
+    if (p.base.kind == motion::BaseMotionKind::kRecorded) parts.push_back("base motion: recorded (interpolated)");
+    if (p.base.vibration.count > 0) parts.push_back("base vibration");
     if (p.gyro.d1 > 0.0 || p.gyro.d2 > 0.0) parts.push_back("bearing viscous friction");
     if constexpr (kDcDrive) {
       if (p.drive.friction.coulomb > 0.0) parts.push_back("bearing Coulomb friction (stick-slip)");

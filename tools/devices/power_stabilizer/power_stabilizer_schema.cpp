@@ -7,6 +7,7 @@
 #include <string>
 
 #include "tools/devices/power_stabilizer/power_stabilizer_checks.hpp"
+#include "tools/devices/base_motion/base_motion_schema.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_scene.hpp"
 #include "tools/run/recorder.hpp"
 #include "tools/scene/schema.hpp"
@@ -44,7 +45,7 @@ constexpr schema::Field<S> kOptions[] = {
 
 void set_roll_axis(S& s, std::int64_t axis) {
   s.base_roll_axis = static_cast<int>(axis);
-  s.plant.base.axis_B = axis == 1 ? dynamics::Vec3::UnitX() : dynamics::Vec3::UnitY();
+  s.plant.base.harmonic.axis_B = axis == 1 ? dynamics::Vec3::UnitX() : dynamics::Vec3::UnitY();
 }
 
 constexpr schema::Field<S> kFields[] = {
@@ -92,9 +93,9 @@ constexpr schema::Field<S> kFields[] = {
               GS_NUMBER(plant.beta0))
         .degrees(),
     F::number("base", "roll_amplitude_rad", "rad", Range::closed(0.0, 0.5), "harmonic base roll amplitude",
-              GS_NUMBER(plant.base.amplitude)),
+              GS_NUMBER(plant.base.harmonic.amplitude)),
     F::number("base", "roll_frequency_rad_s", "rad/s", Range::positive(), "base roll frequency",
-              GS_NUMBER(plant.base.frequency)),
+              GS_NUMBER(plant.base.harmonic.frequency)),
     F::integer("base", "roll_axis", "", 1, 2, "base axis the roll is about", set_roll_axis,
                [](const S& s) -> std::int64_t { return s.base_roll_axis; }),
     F::number("disturbance", "M1_Nm", "N m", Range::closed(-1e6, 1e6), "torque step on axis 1 (platform)",
@@ -223,6 +224,13 @@ std::string triangle(const S& s) {
 }
 
 constexpr schema::Rule<S> kRules[] = {
+    {"base", "roll_amplitude_rad", "[base] roll_amplitude_rad > 0 only with [motion] kind = \"harmonic_roll\"",
+     [](const S& s) -> std::string {
+       return s.plant.base.harmonic.amplitude > 0.0 && s.plant.base.kind != motion::BaseMotionKind::kHarmonicRoll
+                  ? "a harmonic roll and [motion] kind = \"prescribed\" or \"recorded\" both move the base: give "
+                    "the roll in [motion] (prescribed) or set roll_amplitude_rad = 0"
+                  : "";
+     }},
     {"gyro", "fidelity", "`precession` needs `structure = \"rigid\"` (P0 has no platform-gyro shaft mode (14.31))",
      [](const S& s) -> std::string {
        return s.precession() && s.elastic()
@@ -283,11 +291,11 @@ constexpr schema::Rule<S> kRules[] = {
        if (std::abs(n - std::round(n)) > 1e-9 * n) {
          return "must be a whole number of ticks (the phase must repeat exactly)";
        }
-       if (s.plant.base.amplitude > 0.0) {
-         const double periods = s.drift_period_s * s.plant.base.frequency / (2.0 * std::numbers::pi);
+       if (s.plant.base.harmonic.amplitude > 0.0) {
+         const double periods = s.drift_period_s * s.plant.base.harmonic.frequency / (2.0 * std::numbers::pi);
          if (std::abs(periods - std::round(periods)) > 1e-9 || std::round(periods) < 1.0) {
            return "must be a whole number of base roll periods 2 pi/roll_frequency_rad_s = " +
-                  std::to_string(2.0 * std::numbers::pi / s.plant.base.frequency) + " s";
+                  std::to_string(2.0 * std::numbers::pi / s.plant.base.harmonic.frequency) + " s";
          }
        }
        return "";
@@ -370,6 +378,7 @@ bool read_power_stabilizer_scene(SceneReader& r, PowerStabilizerScene& s) {
     s.loop = read_loop_config(r, "gyro-exponential", {"gyro-exponential", "rk4"});
   }
   schema::read(r, kFields, s);
+  read_base_motion(r, s.plant.base, s.loop.duration_s);
   derive(s);
   schema::check(r, kRules, s);
   if (r.ok()) derive_drives(s);
@@ -384,6 +393,7 @@ bool read_power_stabilizer_scene(SceneReader& r, PowerStabilizerScene& s) {
 SceneDoc power_stabilizer_doc() {
   SceneDoc d{{schema::document(kOptions), schema::document(kFields)}, schema::document(kRules)};
   d.tables[1].title = "";
+  d.tables.push_back(base_motion_doc());
   for (const std::string& rule : power_stabilizer_plant_rules()) d.rules.push_back(rule);
   return d;
 }

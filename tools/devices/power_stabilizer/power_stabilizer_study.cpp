@@ -103,7 +103,11 @@ int power_stabilizer_study_setup(SceneReader& reader, std::int64_t ticks, PowerS
   out.scene_duration_s = scene->loop.duration_s;
   if (ticks >= 0) out.loop.duration_s = static_cast<double>(ticks) * out.loop.tick_s();
   out.plant_gyro = scene->plant.gyro;
-  out.base = scene->plant.base;
+  if (scene->plant.base.kind != motion::BaseMotionKind::kHarmonicRoll || scene->plant.base.vibration.count > 0) {
+    why = "the accuracy study takes the harmonic base roll ([base]) alone; this scene's [motion] adds another motion";
+    return 4;
+  }
+  out.base = scene->plant.base.harmonic;
   out.H = scene->plant.H;
   if (scene->loop.integrator == "rk4") return record_study_inputs<dynamics::Rk4>(*scene, out.loop, out);
   return record_study_inputs<dynamics::GyroscopicExponential>(*scene, out.loop, out);
