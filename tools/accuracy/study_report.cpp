@@ -1,3 +1,4 @@
+#include "tools/build_paths.hpp"
 #include "tools/accuracy/study_report.hpp"
 
 #include "tools/run/output_dir.hpp"
@@ -318,7 +319,7 @@ bool write_study_outputs(const StudyResult& s, const std::string& out_dir, bool 
   if (!out.write("report.json", study_json(s).dump(2) + "\n", error)) return false;
   if (plot) {
     const char* here = std::getenv("GYROSTAB_WORK_PRECISION_SCRIPT");
-    const std::string script = here ? here : GYROSTAB_SOURCE_DIR "/tools/plot/plot_work_precision.py";
+    const std::string script = here ? here : std::string(build_source_dir()) + "/tools/plot/plot_work_precision.py";
     std::string why;
     if (run_program({"/usr/bin/python3", script, out.staging_dir()}, why) != 0) {
       std::fprintf(stderr, "gyrostab: work_precision.png not written (needs /usr/bin/python3 with python3-matplotlib%s); "

@@ -1,3 +1,4 @@
+#include "tools/build_paths.hpp"
 #include "tools/run/run_output.hpp"
 
 #include <cstdio>
@@ -50,7 +51,7 @@ bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recor
   if (!rec.write_csv(out.staged("signals.csv"), error)) return false;
   const char* here = std::getenv("GYROSTAB_PLOT_SCRIPT");  // set and empty: no plots (tests, the CAN VM)
   if (cfg.plots && (here == nullptr || *here != '\0')) {
-    const std::string script = here ? here : GYROSTAB_SOURCE_DIR "/tools/plot/plot_run.py";
+    const std::string script = here ? here : std::string(build_source_dir()) + "/tools/plot/plot_run.py";
     std::string why;
     if (run_program({"/usr/bin/python3", script, out.staging_dir()}, why) != 0) {
       std::fprintf(stderr, "gyrostab: plots not written (needs /usr/bin/python3 with python3-matplotlib%s); "

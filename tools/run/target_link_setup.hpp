@@ -16,15 +16,12 @@
 #include <nlohmann/json.hpp>
 
 #include "hil/target/target_endpoint.hpp"
+#include "tools/build_paths.hpp"
 #include "tools/devices/device.hpp"
 #include "tools/run/controller_report.hpp"
 #include "tools/run/link_identity.hpp"
 #include "tools/run/link_settings.hpp"
 #include "tools/run/run_output.hpp"
-
-#ifndef GYROSTAB_IMAGE_DIR
-#define GYROSTAB_IMAGE_DIR ""
-#endif
 
 namespace gyrostab::tools {
 
@@ -33,7 +30,7 @@ namespace gyrostab::tools {
 inline std::string target_image_path(const std::string& device, const TransportOptions& t) {
   if (!t.target_image.empty()) return t.target_image;
   const char* env = std::getenv("GYROSTAB_IMAGE_DIR");
-  const std::string dir = env != nullptr && *env != '\0' ? env : GYROSTAB_IMAGE_DIR;
+  const std::string dir = env != nullptr && *env != '\0' ? env : build_image_dir();
   return dir + (t.target_core == "m4f" ? "/m4/" : "/m7/") + device + ".elf";
 }
 

@@ -1,3 +1,4 @@
+#include "tools/build_paths.hpp"
 #include "tools/sweep/merge.hpp"
 
 #include <unistd.h>
@@ -322,7 +323,7 @@ json timing_json(const std::vector<json>& records, const std::vector<bool>& pres
 bool draw_heat_maps(const fs::path& staged, const Study& s, std::string& why) {
   const char* here = std::getenv("GYROSTAB_SWEEP_PLOT_SCRIPT");  // set and empty: no heat maps (tests)
   if (here != nullptr && *here == '\0') return true;
-  const std::string script = here ? here : GYROSTAB_SOURCE_DIR "/tools/plot/plot_sweep.py";
+  const std::string script = here ? here : std::string(build_source_dir()) + "/tools/plot/plot_sweep.py";
   std::vector<std::string> argv{"/usr/bin/python3", script, staged.string()};
   for (const Variant& v : s.variants) argv.push_back(v.name);
   const int rc = run_program(argv, why);
