@@ -28,7 +28,7 @@ extern const DeviceDescriptor kConing{
         "`coning_rate_first_order_rad_s` (open loop, through G(iν)); `platform_mean_rate_rad_s` (its absolute "
         "rate about axis 3, = the drift), `gyro_mean_reading_rad_s` (nulled by the loop), `mean_cos_phi`, "
         "`max_abs_beta_rad`, `loop_sensitivity_abs`, `gyro_kind`, `Omega10_input_rad_s`, "
-        "`Omega30_spin_rad_s`, `periods`, `statistics_from_s`, `ticks` (null measurements when fewer than two "
+        "`Omega30_spin_rad_s`, `vibration_period_s`, `periods`, `statistics_from_s`, `ticks` (null measurements when fewer than two "
         "periods completed after settle_s). CSV columns: `phi_rad` (platform azimuth relative to the base), "
         "`phi_rate_rad_s`, `platform_rate_rad_s` (absolute, about axis 3), `beta_rad`, `reading` (P (c2/H) β "
         "[rad/s], I (d2/H) β [rad]), `drive_voltage_V`, `status_bits`. report.json `\"limits\"`: "

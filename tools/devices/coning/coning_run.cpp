@@ -112,6 +112,7 @@ class ConingRun {
                      {"coning_rate_book_rad_s", book},
                      {"coning_rate_first_order_rad_s", first},
                      {"loop_sensitivity_abs", std::abs(S)},
+                     {"vibration_period_s", 2.0 * std::numbers::pi / nu},
                      {"periods", blocks_},
                      {"statistics_from_s", s_.settle_s},
                      {"ticks", ticks_}};
