@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 #include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/sensor_frame.hpp"
@@ -50,7 +51,7 @@ class ConingPlant {
     begin_sensor_frame(f, tick, t_.tick_ns);
     f.gimbal_angle_rad[msg::kAxis2] = beta_rad();
     f.gimbal_rate_rad_s[msg::kAxis2] = beta_rate_rad_s();
-    f.carrier_angle_rad[msg::kYaw] = std::remainder(phi_rad(), 2.0 * 3.14159265358979323846);
+    f.carrier_angle_rad[msg::kYaw] = std::remainder(phi_rad(), 2.0 * std::numbers::pi);
     const dynamics::Vec3 w = platform_rate_rad_s(tick_time(tick));
     for (int i = 0; i < 3; ++i) f.carrier_rate_rad_s[i] = w[i];
   }
