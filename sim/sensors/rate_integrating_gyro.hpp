@@ -23,7 +23,7 @@
 // (linear in between, so a ramp is integrated exactly to RK4 order), torquer M [N m] (held).
 // Assumptions (book): symmetric rotor at constant spin, small β (except the I-gyro saturation case), no
 // structural compliance (the B + H²/c1 correction (9.21) is left out), no anisoelastic or coning terms
-// (§4.5 rectification errors are not modelled).
+// (the coning error of Magnus §15.5 with the full case rate: single_axis_gyro_coning.hpp).
 // Oracle: tests/oracle/rate_integrating_gyro_test.cpp — steady outputs (15.3), (15.4), (15.11), (15.15)-
 // (15.16), (15.19); free-motion frequency and damping of (15.2); the I-gyro time constant (15.14); −3 dB
 // bandwidth of the P-gyro from the transfer function; the turn-indicator reading (15.6).

@@ -54,6 +54,8 @@ SCENES = {
     "schuler-gyro-pendulum": "gyro_pendulum",
     "gimbal-error-heading-gyro-turn": "gimbal_error",
     "u-gyro-rate-table": "u_gyro",
+    "coning-p-gyro-planar-vibration": "coning",
+    "coning-i-gyro-conical-vibration": "coning",
 }
 
 failures = []

@@ -1,0 +1,103 @@
+// The coning platform as a scene runs it (Magnus §15.5; sim/models/coning_platform.hpp): a platform on a
+// vibrating base, turned about its axis 3 by a geared servo at the held drive voltage, carrying a P- or
+// I-gyro with its input axis along the platform's axis 3; integrated by RK4 with the scene's sub-steps.
+// Start: at rest relative to the base (φ = φ' = 0), the gyro at β = β' = 0.
+//
+// State: [φ (rad), φ' (rad/s), β (rad), β' (rad/s)] (named accessors below). Input (ActuatorFrame):
+// motor_voltage_V[kAxis1] = V [V], clipped at ±voltage_limit; the safe state's zero voltage stops the drive.
+// Outputs (SensorFrame): gimbal_angle_rad[kAxis2] = β, gimbal_rate_rad_s[kAxis2] = β' (the gyro's pick-off,
+// ideal); carrier_angle_rad[kYaw] = φ wrapped to (−π, π] (the drive's encoder, ideal);
+// carrier_rate_rad_s = the platform's absolute angular velocity in platform axes (truth, for logs).
+// No random streams. Allocation-free after construction. Docs: docs/models/coning.md. Oracle:
+// tests/oracle/coning_test.cpp; the shipped scenes sim/scenes/coning-*.toml run in tests/determinism and
+// tests/alloc.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+
+#include "firmware/msg/actuator_frame.hpp"
+#include "firmware/msg/sensor_frame.hpp"
+#include "sim/dynamics/rk4.hpp"
+#include "sim/dynamics/substepping.hpp"
+#include "sim/models/coning_platform.hpp"
+#include "sim/plants/plant_timing.hpp"
+#include "sim/plants/sensor_frame_header.hpp"
+
+namespace gyrostab::plants {
+
+struct ConingPlantParams {
+  models::ConingPlatformParams platform{};
+  double voltage_limit{10.0};  // the drive's supply: |V| ≤ this [V]
+};
+
+class ConingPlant {
+ public:
+  using Model = models::ConingPlatform;
+  using Dynamics = Model;
+  using State = Model::State;
+  struct HeldInputs {
+    double voltage{0.0};  // [V]
+  };
+
+  ConingPlant(const ConingPlantParams& p, const PlantTiming& t)
+      : p_(p), t_(t), model_(p.platform), integ_(model_), driver_(integ_, t.tick_ns, t.substeps) {
+    x_ = Model::make_state(0.0, 0.0, 0.0, 0.0);
+  }
+
+  void sense(std::int64_t tick, msg::SensorFrame& f) {
+    begin_sensor_frame(f, tick, t_.tick_ns);
+    f.gimbal_angle_rad[msg::kAxis2] = beta_rad();
+    f.gimbal_rate_rad_s[msg::kAxis2] = beta_rate_rad_s();
+    f.carrier_angle_rad[msg::kYaw] = std::remainder(phi_rad(), 2.0 * std::numbers::pi);
+    const dynamics::Vec3 w = platform_rate_rad_s(tick_time(tick));
+    for (int i = 0; i < 3; ++i) f.carrier_rate_rad_s[i] = w[i];
+  }
+
+  void actuate(const msg::ActuatorFrame& cmd) {
+    model_.inputs.voltage = std::clamp(cmd.motor_voltage_V[msg::kAxis1], -p_.voltage_limit, p_.voltage_limit);
+  }
+
+  // Integrates [k, k + 1).
+  void advance(std::int64_t tick) { driver_.advance_tick(tick, x_); }
+
+  bool finite() const { return x_.allFinite(); }
+
+  double tick_time(std::int64_t tick) const { return 1e-9 * static_cast<double>(tick * t_.tick_ns); }
+  double phi_rad() const { return x_[Model::kPhi]; }
+  double phi_rate_rad_s() const { return x_[Model::kPhiRate]; }
+  double beta_rad() const { return x_[Model::kBeta]; }
+  double beta_rate_rad_s() const { return x_[Model::kBetaRate]; }
+  // The platform's absolute angular velocity at time t, platform axes [rad/s].
+  dynamics::Vec3 platform_rate_rad_s(double t) const {
+    dynamics::Vec3 w, dw;
+    model_.platform_rates(t, x_, w, dw);
+    return w;
+  }
+  // The gyro's reading: P (c2/H) β [rad/s]; I (d2/H) β [rad].
+  double indicated() const { return sensors::coning_gyro_indicated(p_.platform.gyro, beta_rad()); }
+  HeldInputs held_inputs() const { return {model_.inputs.voltage}; }
+  const State& state() const { return x_; }
+  const Dynamics& dynamics() const { return model_; }
+  const ConingPlantParams& params() const { return p_; }
+
+  // The runtime guard's names (tools/run/state_guard.hpp).
+  static constexpr int kGuardedStates = 4;
+  static const char* state_name(int i) {
+    constexpr const char* n[] = {"phi_rad", "phi_rate_rad_s", "beta_rad", "beta_rate_rad_s"};
+    return n[i];
+  }
+  double state_value(int i) const { return x_[i]; }
+
+ private:
+  const ConingPlantParams& p_;
+  PlantTiming t_;
+  Model model_;
+  dynamics::Rk4<Model> integ_;
+  dynamics::SubstepDriver<dynamics::Rk4<Model>> driver_;
+  State x_;
+};
+
+}  // namespace gyrostab::plants

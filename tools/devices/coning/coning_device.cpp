@@ -1,0 +1,41 @@
+// The coning platform in the registry (tools/devices/registry.cpp).
+#include "tools/devices/coning/coning_scene.hpp"
+
+namespace gyrostab::tools {
+
+extern const DeviceDescriptor kConing{
+    .name = "coning",
+    .summary =
+        "Vibration effects on rate gyros, the coning error of Magnus §15.5, (15.36)-(15.42) "
+        "(sim/plants/coning_plant.hpp, sim/models/coning_platform.hpp, the gyro "
+        "sim/sensors/single_axis_gyro_coning.hpp, docs/models/coning.md): a platform turning about its axis 3 "
+        "on a base with angular vibration of amplitude Φ at ν about an axis at δ from axis 3 towards axis 1 "
+        "(planar, or conical with the spin-axis component lagging by ε), driven by a geared servo and carrying "
+        "a single-axis P-gyro (c2 > 0) or I-gyro (c2 = 0) with its input axis on the platform's axis 3 and its "
+        "spin axis on axis 1; the gyro's gimbal kinematics are exact, so its effective input axis tilts by β. "
+        "The firmware (firmware/app/coning_controller.hpp, firmware/control/coning_null_law.hpp) slaves the "
+        "platform so that the gyro reads zero: the platform then turns relative to the base at minus the "
+        "gyro's coning error. Shipped: `sim/scenes/coning-p-gyro-planar-vibration.toml` (the constructed case "
+        "of (15.41): −3.08e-3 rad/s), `sim/scenes/coning-i-gyro-conical-vibration.toml` (an I-gyro under "
+        "conical vibration; planar would give none, (15.42)). Integrator: `rk4` (the only one).",
+    .figures =
+        "Figures, after settle_s over whole vibration periods (rounded to ticks): `drift_rate_rad_s` (the "
+        "platform's turn relative to the base: the slope between its azimuth averaged over the first and the "
+        "last period) against `coning_rate_book_rad_s` (the open-loop error: P −H Ω10 Ω30 cos ε/(2 c2) "
+        "(15.39)-(15.41), I −H Ω10 Ω30 sin ε/(2 d2 ν)) with `drift_rel_error_vs_book` (drift = −error), and "
+        "`drift_predicted_rad_s` (first order through the gyro's response G(iν), the loop's sensitivity at ν "
+        "and the mean cos φ of the drifting platform) with `drift_rel_error_vs_prediction`; "
+        "`coning_rate_first_order_rad_s` (open loop, through G(iν)); `platform_mean_rate_rad_s` (its absolute "
+        "rate about axis 3, = the drift), `gyro_mean_reading_rad_s` (nulled by the loop), `mean_cos_phi`, "
+        "`max_abs_beta_rad`, `loop_sensitivity_abs`, `gyro_kind`, `Omega10_input_rad_s`, "
+        "`Omega30_spin_rad_s`, `vibration_period_s`, `periods`, `statistics_from_s`, `ticks` (null measurements when fewer than two "
+        "periods completed after settle_s). CSV columns: `phi_rad` (platform azimuth relative to the base), "
+        "`phi_rate_rad_s`, `platform_rate_rad_s` (absolute, about axis 3), `beta_rad`, `reading` (P (c2/H) β "
+        "[rad/s], I (d2/H) β [rad]), `drive_voltage_V`, `status_bits`. report.json `\"limits\"`: "
+        "`drive_voltage_limit_V`.",
+    .read = read_coning,
+    .doc = coning_doc,
+    .can_nodes = can::kAllNodes,
+};
+
+}  // namespace gyrostab::tools
