@@ -14,7 +14,8 @@ namespace gyrostab::tools {
   X(kGyroPendulum)          \
   X(kGimbalError)           \
   X(kUGyro)                 \
-  X(kConing)
+  X(kConing)                \
+  X(kFoucaultGyro)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,
