@@ -23,14 +23,17 @@
 // step j acts from τ = latency·T_tick later, τ = m Tc + τ', 0 ≤ τ' < Tc:
 //   x_{j+1} = Φ x_j + Γ0 u_{j−m} + Γ1 u_{j−m−1},   u_j = −k e_j,
 //   Φ = e^{F Tc},  Γ0 = ∫_0^{Tc−τ'} e^{Fs} ds g,  Γ1 = e^{F(Tc−τ')} ∫_0^{τ'} e^{Fs} ds g.
-// With the delay slots [u_{j−1} … u_{j−m−1}] the closed loop has 5 + m states; its characteristic polynomial
-// (below, from Φ's by Faddeev-LeVerrier: no large matrix, the target's stack is 8 KB) scaled by a radius ρ
-// goes through the Schur-Cohn test, and ρ is bisected to the spectral radius. The sampled loop is stable iff ρ < 1; −ln(ρ)/Tc is its slowest decay rate.
-// The matrix exponential: scaling and squaring with a 12-term Taylor series (‖F t‖ ≤ 1/2 after scaling:
-// truncation ≤ 0.5¹³/13! ≈ 2e-14 relative).
+// With the delay slots [u_{j−1} … u_{j−m−1}] the closed loop has 5 + m states. Its characteristic polynomial
+// is built in w = z − 1 from Ψ = Φ − I by Faddeev-LeVerrier (no large matrix: the target's stack is 8 KB; and
+// in w, not z, because the roots z = e^{λTc} crowd near 1 where the roots w ≈ λTc are well separated relative
+// to their size — built in z, its rounding moved ρ by up to 4e-8 at Tc = 0.25 ms); for a radius ρ it is mapped
+// onto the left half-plane (z = ρ(1 + v)/(1 − v)) and goes through Routh-Hurwitz; ρ is bisected. The sampled
+// loop is stable iff ρ < 1; −ln(ρ)/Tc is its slowest decay rate.
+// e^{Ft} − I: scaling and squaring (E ← E² + 2E) with a 13-term Taylor series without its 1 (‖F t‖ ≤ 1/2
+// after scaling: truncation ≤ 0.5¹⁴/14! ≈ 7e-16 relative).
 //
-// O(1): the sampled part a few 4- and 5-square matrix products and 200 Schur-Cohn tests of degree ≤ 21. No heap, no
-// exceptions, + − × ÷ and sqrt only. Tests: tests/oracle/position_gyro_platform_test.cpp (the coefficients
+// O(1): the sampled part a few 4- and 5-square matrix products and ≤ 100 Routh tests of degree ≤ 21. No
+// heap, no exceptions, + − × ÷ and sqrt only. Tests: tests/oracle/position_gyro_platform_test.cpp (the coefficients
 // against the model's linearisation, the band edges against the roots' signs, ρ against the eigenvalues).
 // Docs: docs/models/position-gyro-platform.md#stability
 #pragma once
@@ -126,9 +129,11 @@ constexpr PlatformReducedPlant platform_reduced_plant(const PositionGyroPlatform
           {0.0, 1.0 / T, 0.0, 0.0}};
 }
 
-// The plant over one control period: x_{j+1} = Phi x_j + G0 u_{j−m} + G1 u_{j−m−1}.
+// The plant over one control period: x_{j+1} = Phi x_j + G0 u_{j−m} + G1 u_{j−m−1}; Psi = Phi − I, kept apart
+// because the polynomial below is built from it (Phi's eigenvalues crowd near 1, Psi's are ≈ λ Tc).
 struct PlatformDiscretized {
   double Phi[4][4];
+  double Psi[4][4];
   double G0[4];
   double G1[4];
   int m{0};  // whole control periods of latency
@@ -136,7 +141,7 @@ struct PlatformDiscretized {
 
 namespace detail {
 
-// e^{X t} of the 5-square augmented matrix X = [F g; 0 0]: [e^{Ft}, ∫_0^t e^{Fs} ds g; 0 1].
+// e^{X t} − I of the 5-square augmented matrix X = [F g; 0 0]: [e^{Ft} − I, ∫_0^t e^{Fs} ds g; 0 0].
 struct Aug5 {
   double a[5][5];
 };
@@ -152,7 +157,7 @@ inline Aug5 aug_mul(const Aug5& x, const Aug5& y) {
   return r;
 }
 
-inline Aug5 aug_exp(const PlatformReducedPlant& p, double t) {
+inline Aug5 aug_expm1(const PlatformReducedPlant& p, double t) {
   Aug5 x{};
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) x.a[i][j] = p.F[i][j] * t;
@@ -173,9 +178,8 @@ inline Aug5 aug_exp(const PlatformReducedPlant& p, double t) {
   for (int s = 0; s < squarings; ++s) f *= 0.5;
   for (int i = 0; i < 5; ++i)
     for (int j = 0; j < 5; ++j) x.a[i][j] *= f;
-  Aug5 e{}, term{};
-  for (int i = 0; i < 5; ++i) e.a[i][i] = term.a[i][i] = 1.0;
-  for (int q = 1; q <= 12; ++q) {
+  Aug5 e = x, term = x;  // Σ_{q≥1} X^q/q!
+  for (int q = 2; q <= 13; ++q) {
     term = aug_mul(term, x);
     for (int i = 0; i < 5; ++i)
       for (int j = 0; j < 5; ++j) {
@@ -183,28 +187,30 @@ inline Aug5 aug_exp(const PlatformReducedPlant& p, double t) {
         e.a[i][j] += term.a[i][j];
       }
   }
-  for (int s = 0; s < squarings; ++s) e = aug_mul(e, e);
+  for (int s = 0; s < squarings; ++s) {  // e^{2X} − I = E² + 2E with E = e^X − I
+    Aug5 sq = aug_mul(e, e);
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j) e.a[i][j] = sq.a[i][j] + 2.0 * e.a[i][j];
+  }
   return e;
 }
 
-// Schur-Cohn: every root of c[0] + c[1] z + … + c[n] z^n strictly inside the unit circle. Each step keeps
-// the degree-(n−1) polynomial (c_n p(z) − c_0 p*(z))/z, p* the reversed one; the test is |c_0| < |c_n|.
-inline bool schur_cohn_stable(const double* coef, int n) {
-  double a[kPlatformMaxDegree + 1];
-  for (int i = 0; i <= n; ++i) a[i] = coef[i];
-  for (int deg = n; deg >= 1; --deg) {
-    const double lead = a[deg] < 0.0 ? -a[deg] : a[deg];
-    const double tail = a[0] < 0.0 ? -a[0] : a[0];
-    if (!(tail < lead)) return false;
-    double b[kPlatformMaxDegree + 1];
-    double big = 0.0;
-    for (int i = 1; i <= deg; ++i) {
-      b[i - 1] = a[deg] * a[i] - a[0] * a[deg - i];
-      const double m = b[i - 1] < 0.0 ? -b[i - 1] : b[i - 1];
-      big = m > big ? m : big;
+// Routh-Hurwitz: every root of c[0] + c[1] v + … + c[n] v^n strictly in the left half-plane (c[n] ≠ 0).
+// Two rolling rows of the Routh array; a zero or a sign change in its first column: not stable.
+inline bool routh_stable(const double* c, int n) {
+  constexpr int kW = kPlatformMaxDegree / 2 + 2;
+  double r0[kW]{}, r1[kW]{};
+  for (int i = 0; 2 * i <= n; ++i) r0[i] = c[n - 2 * i];
+  for (int i = 0; 2 * i + 1 <= n; ++i) r1[i] = c[n - 2 * i - 1];
+  const bool positive = c[n] > 0.0;
+  for (int row = 1; row <= n; ++row) {
+    if (!(positive ? r1[0] > 0.0 : r1[0] < 0.0)) return false;
+    double next[kW]{};
+    for (int i = 0; i + 1 < kW; ++i) next[i] = (r1[0] * r0[i + 1] - r0[0] * r1[i + 1]) / r1[0];
+    for (int i = 0; i < kW; ++i) {
+      r0[i] = r1[i];
+      r1[i] = next[i];
     }
-    if (!(big > 0.0)) return false;
-    for (int i = 0; i < deg; ++i) a[i] = b[i] / big;  // rescaled: no overflow over the steps
   }
   return true;
 }
@@ -224,93 +230,118 @@ inline PlatformDiscretized platform_discretized(const PositionGyroPlatformPlant&
   }
   if (m > kPlatformMaxDelay) m = kPlatformMaxDelay;
   d.m = m;
-  const detail::Aug5 e0 = detail::aug_exp(p, Tc - tp);
+  const detail::Aug5 e0 = detail::aug_expm1(p, Tc - tp);  // the part of the period after the switch
   for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) d.Phi[i][j] = e0.a[i][j];
+    for (int j = 0; j < 4; ++j) d.Psi[i][j] = e0.a[i][j];
     d.G0[i] = e0.a[i][4];
     d.G1[i] = 0.0;
   }
-  if (tp > 0.0) {
-    const detail::Aug5 e1 = detail::aug_exp(p, tp);
+  if (tp > 0.0) {  // Φ = Φ0 Φ1: Ψ = Ψ0 + Ψ1 + Ψ0 Ψ1; Γ1 = Φ0 γ1 = γ1 + Ψ0 γ1
+    const detail::Aug5 e1 = detail::aug_expm1(p, tp);
     double P[4][4];
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {
         double a = 0.0;
-        for (int l = 0; l < 4; ++l) a += d.Phi[i][l] * e1.a[l][j];
-        P[i][j] = a;
+        for (int l = 0; l < 4; ++l) a += d.Psi[i][l] * e1.a[l][j];
+        P[i][j] = d.Psi[i][j] + e1.a[i][j] + a;
       }
       double g = 0.0;
-      for (int l = 0; l < 4; ++l) g += d.Phi[i][l] * e1.a[l][4];
-      d.G1[i] = g;
+      for (int l = 0; l < 4; ++l) g += d.Psi[i][l] * e1.a[l][4];
+      d.G1[i] = e1.a[i][4] + g;
     }
     for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j) d.Phi[i][j] = P[i][j];
+      for (int j = 0; j < 4; ++j) d.Psi[i][j] = P[i][j];
   }
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) d.Phi[i][j] = d.Psi[i][j] + (i == j ? 1.0 : 0.0);
   return d;
 }
 
-// The sampled closed loop's characteristic polynomial c[0] + c[1] z + … + c[n] z^n, n = 5 + m (returned):
-// with u_j = −k e_j and the latency's m + 1 delay slots [u_{j−1} … u_{j−m−1}],
-//   Q(z) = z^{m+1} det(zI − Φ) + k e_1ᵀ adj(zI − Φ)(Γ0 z + Γ1),
-// det and adjugate by Faddeev-LeVerrier on the 4-square Φ: adj(zI − Φ) = Σ_{i=1..4} M_i z^{4−i},
-// M_1 = I, M_i = Φ M_{i−1} + p_{5−i} I, p_{4−i} = −tr(Φ M_i)/i.
+// The sampled closed loop's characteristic polynomial in w = z − 1 (its roots ≈ λ Tc, well separated
+// relative to their size, where those in z crowd near 1): q[0] + q[1] w + … + q[n] w^n, n = 5 + m (returned).
+// With u_j = −k e_j and the latency's m + 1 delay slots [u_{j−1} … u_{j−m−1}],
+//   Q(z) = z^{m+1} det(zI − Φ) + k e_1ᵀ adj(zI − Φ)(Γ0 z + Γ1),   zI − Φ = wI − Ψ,
+// det and adjugate by Faddeev-LeVerrier on Ψ: adj(wI − Ψ) = Σ_{i=1..4} M_i w^{4−i}, M_1 = I,
+// M_i = Ψ M_{i−1} + p_{5−i} I, p_{4−i} = −tr(Ψ M_i)/i; z^{m+1} = (1 + w)^{m+1}, Γ0 z + Γ1 = (Γ0 + Γ1) + Γ0 w.
 inline int platform_sampled_characteristic(const PlatformDiscretized& d, double k,
-                                           double (&c)[kPlatformMaxDegree + 1]) {
-  double p[5] = {0.0, 0.0, 0.0, 0.0, 1.0};  // det(zI − Φ), p[i] of z^i
+                                           double (&q)[kPlatformMaxDegree + 1]) {
+  double p[5] = {0.0, 0.0, 0.0, 0.0, 1.0};  // det(wI − Ψ), p[i] of w^i
   double Mi[4][4]{}, Next[4][4];
-  double s0[5]{}, s1[5]{};  // e_1ᵀ M_i Γ0, e_1ᵀ M_i Γ1 (index i = 1..4)
+  double s0[5]{}, s1[5]{};  // e_1ᵀ M_i (Γ0 + Γ1), e_1ᵀ M_i Γ0 (index i = 1..4)
   for (int i = 1; i <= 4; ++i) {
     for (int r = 0; r < 4; ++r)
       for (int col = 0; col < 4; ++col) {
         double a = 0.0;
-        for (int l = 0; l < 4; ++l) a += d.Phi[r][l] * Mi[l][col];
+        for (int l = 0; l < 4; ++l) a += d.Psi[r][l] * Mi[l][col];
         Next[r][col] = a + (r == col ? p[5 - i] : 0.0);
       }
     for (int r = 0; r < 4; ++r)
       for (int col = 0; col < 4; ++col) Mi[r][col] = Next[r][col];
     double tr = 0.0;
     for (int r = 0; r < 4; ++r)
-      for (int l = 0; l < 4; ++l) tr += d.Phi[r][l] * Mi[l][r];
+      for (int l = 0; l < 4; ++l) tr += d.Psi[r][l] * Mi[l][r];
     p[4 - i] = -tr / static_cast<double>(i);
     for (int l = 0; l < 4; ++l) {
-      s0[i] += Mi[0][l] * d.G0[l];
-      s1[i] += Mi[0][l] * d.G1[l];
+      s0[i] += Mi[0][l] * (d.G0[l] + d.G1[l]);
+      s1[i] += Mi[0][l] * d.G0[l];
     }
   }
   const int n = 5 + d.m;
-  for (int i = 0; i <= kPlatformMaxDegree; ++i) c[i] = 0.0;
-  for (int i = 0; i <= 4; ++i) c[i + d.m + 1] += p[i];
-  // k Σ_i (s0_i z^{5−i} + s1_i z^{4−i})
-  for (int i = 1; i <= 4; ++i) {
-    c[5 - i] += k * s0[i];
-    c[4 - i] += k * s1[i];
+  double binom[kPlatformMaxDelay + 2]{};  // (1 + w)^{m+1}
+  binom[0] = 1.0;
+  for (int e = 1; e <= d.m + 1; ++e)
+    for (int j = e; j >= 1; --j) binom[j] += binom[j - 1];
+  for (int i = 0; i <= kPlatformMaxDegree; ++i) q[i] = 0.0;
+  for (int i = 0; i <= 4; ++i)
+    for (int j = 0; j <= d.m + 1; ++j) q[i + j] += p[i] * binom[j];
+  for (int i = 1; i <= 4; ++i) {  // k Σ_i (s0_i w^{4−i} + s1_i w^{5−i})
+    q[4 - i] += k * s0[i];
+    q[5 - i] += k * s1[i];
   }
   return n;
 }
 
-// The spectral radius of the sampled closed loop, to a relative 1e-12 (bisection on ρ: Q(ρz) Schur-stable
-// iff every root lies inside |z| < ρ). NaN when a parameter is not finite.
+// Every root of the sampled loop inside |z| < ρ: with z = ρ z', w = (ρ − 1) + ρ w' (a shift the size of the
+// roots: no loss), and the bilinear map z' = (1 + v)/(1 − v), w' = 2v/(1 − v), |z'| < 1 ⟺ Re v < 0:
+// P(v) = Σ r_j (2v)^j (1 − v)^{n−j} through Routh-Hurwitz.
+inline bool platform_sampled_within(const double (&q)[kPlatformMaxDegree + 1], int n, double rho) {
+  double r[kPlatformMaxDegree + 1]{};  // R(w') = Q((ρ − 1) + ρ w'), Horner on polynomials
+  const double a = rho - 1.0, b = rho;
+  r[0] = q[n];
+  for (int j = n - 1; j >= 0; --j) {
+    const int deg = n - 1 - j;  // degree of r before this step
+    for (int i = deg + 1; i >= 1; --i) r[i] = r[i] * a + r[i - 1] * b;
+    r[0] = r[0] * a + q[j];
+  }
+  double P[kPlatformMaxDegree + 1]{};
+  double binom[kPlatformMaxDegree + 1];  // (1 − v)^{n−j}
+  double pow2 = 1.0;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) binom[i] = 0.0;
+    binom[0] = 1.0;
+    for (int e = 1; e <= n - j; ++e)
+      for (int i = e; i >= 1; --i) binom[i] -= binom[i - 1];
+    for (int i = 0; i <= n - j; ++i) P[i + j] += r[j] * pow2 * binom[i];
+    pow2 *= 2.0;
+  }
+  if (P[n] == 0.0) return false;  // a root at z' = −1 (v = ∞): on the circle
+  return detail::routh_stable(P, n);
+}
+
+// The spectral radius of the sampled closed loop, to a relative 1e-12 (bisection on ρ). NaN when a parameter
+// is not finite.
 inline double platform_sampled_radius(const PositionGyroPlatformPlant& s, double k, double Tc, double tau) {
   const PlatformDiscretized d = platform_discretized(s, Tc, tau);
-  double c[kPlatformMaxDegree + 1];
-  const int n = platform_sampled_characteristic(d, k, c);
+  double q[kPlatformMaxDegree + 1];
+  const int n = platform_sampled_characteristic(d, k, q);
   for (int i = 0; i <= n; ++i)
-    if (!std::isfinite(c[i])) return std::nan("");
-  const auto inside = [&](double r) {
-    double sc[kPlatformMaxDegree + 1];
-    double rp = 1.0;
-    for (int i = 0; i <= n; ++i) {
-      sc[i] = c[i] * rp;
-      rp *= r;
-    }
-    return detail::schur_cohn_stable(sc, n);
-  };
+    if (!std::isfinite(q[i])) return std::nan("");
   double hi = 2.0;
-  for (int i = 0; i < 60 && !inside(hi); ++i) hi *= 2.0;
+  for (int i = 0; i < 60 && !platform_sampled_within(q, n, hi); ++i) hi *= 2.0;
   double lo = 0.0;
   for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
     const double mid = 0.5 * (lo + hi);
-    if (inside(mid)) hi = mid;
+    if (platform_sampled_within(q, n, mid)) hi = mid;
     else lo = mid;
   }
   return hi;
