@@ -4,7 +4,8 @@
 Rows (whole run; beside it a zoom on the transient after the disturbance step):
   lag        the pick-off δ − α in microradians against the book's lag M1^SP/k (16.7); the measured lag and
              the dominant root (measured against (16.8) and against the sampled loop) written on it
-  platform   the platform angle δ and the gyro frame α in degrees; the slew rate measured against −M2^K/H
+  platform   the platform angle δ and the gyro frame α in degrees; the slew rate measured against −M2^K/H,
+             the gain and the unstable band of (16.9)
   torque     the platform torquer M1^KP and the disturbance M1^SP [N m]
   status     event lanes, only if a status bit is ever set
 No limits.
@@ -14,8 +15,11 @@ import numpy as np
 import plot_lib as pl
 
 
-def _root(r):
-    return None if not r else "%s %+si /s" % (pl.num(r["re"], 4), pl.num(r["im"], 4))
+def _root(run, key):
+    r = run.figures.get(key)
+    if not isinstance(r, dict) or not all(isinstance(r.get(c), (int, float)) for c in ("re", "im")):
+        return "–"
+    return "%s ± %si /s" % (pl.num(r["re"], 4), pl.num(abs(r["im"]), 4))
 
 
 def plot(run):
@@ -40,12 +44,12 @@ def plot(run):
             pl.legend(r.whole, loc="lower right")
         meas, book = run.fig("lag_before_slew_rad"), run.fig("lag_book_16_7_rad")
         if meas is not None and book is not None:
-            pl.note(r.whole, "steady lag %s µrad (book %s µrad); while slewing %s µrad"
+            pl.note(r.whole, "lag %s µrad (book M1/k %s); slewing %s"
                     % (pl.num(meas * 1e6, 5), pl.num(book * 1e6, 5), pl.num((run.fig("lag_slewing_rad") or 0) * 1e6, 5)),
-                    loc="upper left", size=9, bold=True, color=pl.C_MAIN)
-        pl.note(r.whole, "dominant root measured %s, sampled loop %s, (16.8) %s"
-                % (_root(run.fig("dominant_root_measured")), _root(run.fig("dominant_root_sampled")),
-                   _root(run.fig("dominant_root_16_8"))), loc="upper right", size=7.5)
+                    loc="lower center", size=9, bold=True, color=pl.C_MAIN)
+        pl.note(r.whole, "dominant root (β's extrema after the step) %s;\nsampled loop %s; (16.8) %s"
+                % (_root(run, "dominant_root_measured"), _root(run, "dominant_root_sampled"),
+                   _root(run, "dominant_root_16_8")), loc="upper right", size=7.5)
         pl.ylabel(r.whole, "pick-off δ − α\n[µrad]")
 
     if "platform" in L.rows:
@@ -58,6 +62,10 @@ def plot(run):
         if rate is not None and book is not None:
             pl.note(r.whole, "slew %s °/s (book −M2/H = %s °/s)" % (pl.num(np.degrees(rate), 6), pl.num(np.degrees(book), 6)),
                     loc="upper left", size=9, bold=True, color=pl.C_MAIN)
+        lo, hi = run.fig("band_lower_Nm_rad"), run.fig("band_upper_Nm_rad")
+        if lo is not None and hi is not None:
+            pl.note(r.whole, "k = %s N m/rad; unstable band (16.9) %s < k < %s"
+                    % (pl.num(run.fig("gain_k_Nm_rad"), 5), pl.num(lo, 5), pl.num(hi, 5)), loc="lower left", size=7.5)
         pl.ylabel(r.whole, "angle [°]")
 
     if "torque" in L.rows:
