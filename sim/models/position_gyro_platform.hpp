@@ -30,7 +30,8 @@
 // The closed loop with an analog amplifier (the book's, for the linearisation, the oracles and the step
 // check): PositionGyroPlatformAnalog below.
 // Oracle: tests/oracle/position_gyro_platform_test.cpp — (16.7), (16.8) against the eigenvalues of the
-// linearisation and the simulated decay, the band edges of (16.9) by the response's growth, (16.10), undamped.
+// linearisation and the simulated decay, the band edges of (16.9) by the response's growth, (16.10), undamped,
+// the base's roll through the bearing friction.
 // Docs: docs/models/position-gyro-platform.md
 #pragma once
 

@@ -16,6 +16,7 @@
 // tests/oracle/position_gyro_platform_test.cpp; the shipped scene runs in tests/determinism and tests/alloc.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <numbers>
 

@@ -28,6 +28,7 @@
 #include <complex>
 #include <cstdio>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -110,7 +111,7 @@ TEST(PositionGyroPlatformOracle, SteadyLagAndSlewRate16_7) {
 TEST(PositionGyroPlatformOracle, BaseRollActsThroughTheBearingFriction) {
   PositionGyroPlatformParams p = shipped();
   p.d_base = 0.05;
-  const double k = 1200.0, phi0 = 0.1, wb = 2.0 * M_PI * 2.0;  // 0.1 rad at 2 Hz
+  const double k = 1200.0, phi0 = 0.1, wb = 2.0 * std::numbers::pi * 2.0;  // 0.1 rad at 2 Hz
   PositionGyroPlatformAnalog m(p, k);
   m.plant.inputs.base_rate_amplitude = phi0 * wb;
   m.plant.inputs.base_omega = wb;
@@ -174,7 +175,7 @@ MeasuredMode measure_mode(const PositionGyroPlatformAnalog& m, cd root, double s
   for (int i = 1; i < 6; ++i)
     if (std::abs(d.values[i] - root) < std::abs(d.values[best] - root)) best = i;
   Eigen::VectorXcd v = d.vectors.col(best);
-  v /= v[0];  // pick-off component 1 (δ − α is x0 − x2: normalize on δ, then scale)
+  v /= v[0];  // the phase fixed on δ; the real part is then a real solution of the mode (scaled below)
   State x;
   for (int i = 0; i < 6; ++i) x[i] = v[i].real();
   x *= 1e-3 / std::max(1e-300, std::fabs(PositionGyroPlatform::pickoff(x)));
@@ -184,7 +185,7 @@ MeasuredMode measure_mode(const PositionGyroPlatformAnalog& m, cd root, double s
   r.extrema = ext.count();
   const int n = ext.count();
   if (n < 3) return r;
-  r.omega = 2.0 * M_PI / ext.period();
+  r.omega = 2.0 * std::numbers::pi / ext.period();
   r.sigma = -std::log(std::fabs(ext.value(n - 1)) / std::fabs(ext.value(0))) / (ext.time(n - 1) - ext.time(0));
   return r;
 }
