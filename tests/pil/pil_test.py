@@ -5,6 +5,7 @@ Checks, each with `gyrostab run SCENE --transport target` (the image of BUILD/ar
   1. every image boots, takes its scene's configuration and steps in lockstep: a short run of every shipped
      scene of a device with a firmware controller gives a signals.csv identical byte for byte to the
      in-process run of the same scene and seed (17 scenes, 11 images);
+     in-process run of the same scene and seed (16 scenes, 11 images);
   2. two whole scenes on the target are bit-identical to in process: the monorail (60 000 ticks) and the power
      stabilizer with DC drives (100 000 ticks, current loops at 10 kHz);
   3. the board's UART carries the same frames (--target-link uart): identical for 300 ticks;
@@ -58,6 +59,7 @@ SCENES = {
     "coning-i-gyro-conical-vibration": "coning",
     "foucault-declinometer-settling": "foucault_gyro",
     "foucault-inclinometer-settling": "foucault_gyro",
+    "position-gyro-platform": "position_gyro_platform",
 }
 
 failures = []

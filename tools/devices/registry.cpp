@@ -15,7 +15,8 @@ namespace gyrostab::tools {
   X(kGimbalError)           \
   X(kUGyro)                 \
   X(kConing)                \
-  X(kFoucaultGyro)
+  X(kFoucaultGyro)          \
+  X(kPositionGyroPlatform)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,
