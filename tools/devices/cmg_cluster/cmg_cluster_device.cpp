@@ -26,7 +26,7 @@ extern const DeviceDescriptor kCmgCluster{
         "`near_singular_time_s` (measure below `near_singular_measure`); `rate_limited_ticks` (gimbal rates scaled "
         "to max_gimbal_rate) and `singular_ticks` (the pseudo-inverse refused to invert); "
         "`peak_cmg_momentum_Nms` against `envelope_along_slew_axis_Nms` and `envelope_x/y/z_Nms` (h Σ sqrt(1 − "
-        "(e·g_i)²)); `peak_body_rate_rad_s`, `peak_gimbal_rate_rad_s`, `peak_gimbal_motor_torque_Nm`; "
+        "(e·g_i)²)) and `pyramid_internal_singularity_Nms` = 2h cosβ (the pyramid's; null for explicit axes); `peak_body_rate_rad_s`, `peak_gimbal_rate_rad_s`, `peak_gimbal_motor_torque_Nm`; "
         "`momentum_drift_Nms` = max |L_W(t) − L_W(0)| (the inertial angular momentum, conserved); `steering`, "
         "`slew_deg`, `ticks`. CSV columns: `attitude_error_deg`, `omega_x/y/z_rad_s`, `H_cmg_x/y/z_Nms`, "
         "`delta_1..4_rad`, `singularity_measure`, `status_bits`. report.json `\"limits\"`: "

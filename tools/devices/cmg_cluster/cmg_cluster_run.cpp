@@ -120,6 +120,8 @@ class CmgClusterRun {
             {"singular_ticks", singular_ticks_},
             {"peak_cmg_momentum_Nms", peak_H_},
             {"envelope_along_slew_axis_Nms", h * g.envelope_extent(axis)},
+            {"pyramid_internal_singularity_Nms",
+             s_.gimbal_axes.empty() ? nlohmann::json(2.0 * h * std::cos(s_.skew_rad)) : nlohmann::json(nullptr)},
             {"envelope_x_Nms", h * g.envelope_extent(dynamics::Vec3::UnitX())},
             {"envelope_y_Nms", h * g.envelope_extent(dynamics::Vec3::UnitY())},
             {"envelope_z_Nms", h * g.envelope_extent(dynamics::Vec3::UnitZ())},
