@@ -6,6 +6,7 @@ Checks, each with `gyrostab run SCENE --transport target` (the image of BUILD/ar
      scene of a device with a firmware controller gives a signals.csv identical byte for byte to the
      in-process run of the same scene and seed (17 scenes, 11 images);
      in-process run of the same scene and seed (16 scenes, 11 images);
+     in-process run of the same scene and seed (18 scenes, 11 images);
   2. two whole scenes on the target are bit-identical to in process: the monorail (60 000 ticks) and the power
      stabilizer with DC drives (100 000 ticks, current loops at 10 kHz);
   3. the board's UART carries the same frames (--target-link uart): identical for 300 ticks;
@@ -60,6 +61,9 @@ SCENES = {
     "foucault-declinometer-settling": "foucault_gyro",
     "foucault-inclinometer-settling": "foucault_gyro",
     "position-gyro-platform": "position_gyro_platform",
+    "cmg-cluster-slew": "cmg_cluster",
+    "cmg-cluster-singularity-pseudo-inverse": "cmg_cluster",
+    "cmg-cluster-singularity-robust": "cmg_cluster",
 }
 
 failures = []

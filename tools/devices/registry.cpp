@@ -16,7 +16,8 @@ namespace gyrostab::tools {
   X(kUGyro)                 \
   X(kConing)                \
   X(kFoucaultGyro)          \
-  X(kPositionGyroPlatform)
+  X(kPositionGyroPlatform)  \
+  X(kCmgCluster)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,

@@ -1,0 +1,122 @@
+// CMG cluster controller (Magnus §14.4, (14.45); the spacecraft is the gyrostat of §4.1): attitude by
+// quaternion error feedback, the torque demand turned into gimbal rate commands by a steering law, inside the
+// common controller runtime (fault monitor, scheduler, header, safe state: controller_runtime.hpp). The gimbal
+// rate servos are in the CMG electronics, part of the plant (sim/plants/cmg_cluster_plant.hpp), as real
+// clusters have them: the flight computer sends gimbal rate commands.
+//
+// Laws: firmware/control/attitude_quaternion_feedback.hpp (u = −K_p q_e,vec sign(q_e,0) − K_d ω + ω × H),
+// firmware/control/cmg_steering.hpp (ν = −A⁺ u: pseudo-inverse or singularity-robust inverse, rate limit).
+// The contract has two gimbal slots of each kind (firmware/msg/sensor_frame.hpp); the four-CMG cluster uses
+// them as follows (docs/models/cmg-cluster.md#signals):
+// Reads (SensorFrame): carrier_angle_rad = the spacecraft attitude q_WB as 3-2-1 angles (roll, pitch, yaw)
+//   [rad] (star tracker; rebuilt into q here, valid away from pitch ±90°); carrier_rate_rad_s = ω, body axes
+//   [rad/s] (gyro package); gimbal angles δ_1, δ_2 = gimbal_angle_rad[kAxis1], [kAxis2] and δ_3, δ_4 =
+//   gimbal_rate_rad_s[kAxis1], [kAxis2] [rad] (the CMG electronics' gimbal encoders, wrapped to [−π, π)).
+// Writes (ActuatorFrame): gimbal rate commands ν_c,1, ν_c,2 = gimbal_torque_Nm[kAxis1], [kAxis2] and ν_c,3,
+//   ν_c,4 = motor_voltage_V[kAxis1], [kAxis2] [rad/s]; precession_brake = 0. The safe state's zeros command
+//   every gimbal to rest. Status: kRateLoopSaturated = the gimbal rates were scaled to max_rate;
+//   kGimbalLockGuard = the pseudo-inverse met a singular configuration (det(A Aᵀ)/h⁶ ≤ singular_floor) and
+//   commanded no rates — the CMG cluster's gimbal lock.
+// No drive (current loops): disabled. Rates: the law every control_divisor base ticks.
+// Introspection for the run report (in-process runs): last_measure() = det(A Aᵀ)/h⁶, last_lambda(),
+// last_torque(k) = u_k [N m].
+// Docs: docs/models/cmg-cluster.md#firmware-law
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "firmware/app/controller_runtime.hpp"
+#include "firmware/control/attitude_quaternion_feedback.hpp"
+#include "firmware/control/cmg_steering.hpp"
+#include "firmware/control/config_check.hpp"
+#include "firmware/control/law_status_bits.hpp"
+#include "firmware/msg/actuator_frame.hpp"
+#include "firmware/msg/sensor_frame.hpp"
+
+namespace gyrostab::firmware {
+
+struct CmgClusterConfig {
+  RuntimeConfig runtime{};
+  CmgArray array{};
+  AttitudeGains attitude{};
+  SteeringParams steering{};
+  AttitudeQuaternion reference{};  // the commanded attitude q_WB
+};
+
+class CmgClusterLaw {
+ public:
+  explicit CmgClusterLaw(const CmgClusterConfig& c)
+      : array_(c.array), gains_(c.attitude), steering_(c.steering), reference_(c.reference) {}
+
+  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
+    const AttitudeQuaternion q = quaternion_from_euler321(
+        in.carrier_angle_rad[msg::kRoll], in.carrier_angle_rad[msg::kPitch], in.carrier_angle_rad[msg::kYaw]);
+    const double* w = in.carrier_rate_rad_s;
+    const double delta[kMaxCmgUnits] = {in.gimbal_angle_rad[msg::kAxis1], in.gimbal_angle_rad[msg::kAxis2],
+                                        in.gimbal_rate_rad_s[msg::kAxis1], in.gimbal_rate_rad_s[msg::kAxis2]};
+    double H[3];
+    for (int k = 0; k < 3; ++k) H[k] = gains_.J[k][0] * w[0] + gains_.J[k][1] * w[1] + gains_.J[k][2] * w[2];
+    if (gains_.gyroscopic_feedforward) {
+      const CmgAxes ax = cmg_axes(array_, delta);
+      for (int i = 0; i < array_.count; ++i) {
+        for (int k = 0; k < 3; ++k) H[k] += array_.h * ax.s[i][k];
+      }
+    }
+    attitude_torque(gains_, attitude_error(reference_, q), w, H, torque_);
+    const SteeringOutput o = steer_cmg(array_, steering_, delta, torque_);
+    measure_ = o.measure;
+    lambda_ = o.lambda;
+    cmd.gimbal_torque_Nm[msg::kAxis1] = o.rate[0];
+    cmd.gimbal_torque_Nm[msg::kAxis2] = o.rate[1];
+    cmd.motor_voltage_V[msg::kAxis1] = o.rate[2];
+    cmd.motor_voltage_V[msg::kAxis2] = o.rate[3];
+    cmd.precession_brake = 0.0;
+    if (o.rate_limited) cmd.status |= bit(LawStatusBit::kRateLoopSaturated);
+    if (o.singular) cmd.status |= bit(LawStatusBit::kGimbalLockGuard);
+  }
+  void reset() {}  // stateless: the command follows from the frame
+  void set_reference(const AttitudeQuaternion& q) { reference_ = q; }
+  double last_measure() const { return measure_; }
+  double last_lambda() const { return lambda_; }
+  double last_torque(int k) const { return torque_[k]; }
+
+ private:
+  CmgArray array_;
+  AttitudeGains gains_;
+  SteeringParams steering_;
+  AttitudeQuaternion reference_;
+  double torque_[3]{};
+  double measure_{0.0};
+  double lambda_{0.0};
+};
+
+template <MonotonicClock Clock = NullClock>
+class BasicCmgClusterController : public ControllerRuntime<CmgClusterLaw, Clock> {
+  using Base = ControllerRuntime<CmgClusterLaw, Clock>;
+
+ public:
+  using Config = CmgClusterConfig;
+
+  static ConfigCheck check(const Config& c) {
+    const ConfigCheck r = check_runtime(c.runtime, DriveConfig{}, 0u);
+    if (!r.ok) return r;
+    const AttitudeQuaternion& q = c.reference;
+    const double n = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
+    if (!(std::fabs(n - 1.0) < 1e-9)) return ConfigCheck::refused("cmg cluster: the reference quaternion must be unit", n);
+    if (c.array.count > 4) return ConfigCheck::refused("cmg cluster: the contract carries at most 4 gimbals", c.array.count);
+    if (c.steering.law == SteeringLaw::kSingularityRobust && !(c.steering.lambda0 > 0.0)) {
+      return ConfigCheck::refused("cmg cluster: the singularity-robust inverse needs lambda0 > 0", c.steering.lambda0);
+    }
+    const ConfigCheck s = check_cmg_steering(c.array, c.steering);
+    if (!s.ok) return s;
+    return check_attitude_gains(c.attitude, c.runtime.control_period_s());
+  }
+
+  explicit BasicCmgClusterController(const Config& c, Clock clock = Clock{})
+      : Base(c.runtime, DriveConfig{}, 0u, CmgClusterLaw(c), check(c), clock) {}
+};
+
+using CmgClusterController = BasicCmgClusterController<>;
+
+}  // namespace gyrostab::firmware

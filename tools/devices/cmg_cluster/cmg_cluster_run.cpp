@@ -1,0 +1,195 @@
+// What a CMG cluster run reports: the plant of sim/plants/cmg_cluster_plant.hpp with its meters — the attitude
+// error against the commanded attitude (final, and the settling time into the band), the singularity measure
+// det(A Aᵀ)/h⁶ (its minimum along the run, when, and the time spent near-singular), the steering law's rate
+// limiting and singular ticks, the cluster's momentum against its envelope, the inertial angular momentum's
+// drift (conserved: no external torque acts) — the CSV columns, the half-step error estimate, and the scene's
+// plant and controller for the run modes.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "firmware/platform/posix/monotonic_clock.hpp"
+#include "sim/analysis/half_step_window.hpp"
+#include "tools/devices/cmg_cluster/cmg_cluster_scene.hpp"
+#include "tools/devices/device_scene_of.hpp"
+#include "tools/run/error_estimate_report.hpp"
+
+namespace gyrostab::tools {
+namespace {
+
+using Plant = plants::CmgClusterPlant;
+// Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
+using Controller = firmware::BasicCmgClusterController<firmware::posix::MonotonicClock>;
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+const std::vector<std::string>& columns() {
+  static const std::vector<std::string> c{
+      "attitude_error_deg", "omega_x_rad_s", "omega_y_rad_s", "omega_z_rad_s", "H_cmg_x_Nms", "H_cmg_y_Nms",
+      "H_cmg_z_Nms",        "delta_1_rad",   "delta_2_rad",   "delta_3_rad",   "delta_4_rad", "singularity_measure",
+      "status_bits"};
+  return c;
+}
+
+dynamics::Quat reference_of(const CmgClusterScene& s) {
+  const auto& r = s.controller.reference;
+  return dynamics::Quat(r.w, r.x, r.y, r.z);
+}
+
+class CmgClusterRun {
+ public:
+  explicit CmgClusterRun(const CmgClusterScene& s)
+      : s_(s),
+        plant_(s.plant, s.loop.plant_timing()),
+        reference_(reference_of(s)),
+        L0_(plant_.momentum_world()),
+        window_(s.loop.ticks() / 2, std::min<std::int64_t>(s.loop.ticks() / 4, static_cast<std::int64_t>(1.0 / s.loop.tick_s()))) {
+    error_ = attitude_error_rad();
+    min_measure_ = plant_.singularity_measure();
+  }
+
+  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const msg::ActuatorFrame& cmd) {
+    last_ = cmd;
+    plant_.actuate(cmd);
+    if ((cmd.status & firmware::bit(firmware::LawStatusBit::kRateLoopSaturated)) != 0u) ++rate_limited_ticks_;
+    if ((cmd.status & firmware::bit(firmware::LawStatusBit::kGimbalLockGuard)) != 0u) ++singular_ticks_;
+  }
+  void advance(std::int64_t tick) {
+    window_.before_tick(tick, plant_.state(), plant_.held_inputs());
+    plant_.advance(tick);
+    window_.after_tick(tick, plant_.state());
+    ticks_ = tick + 1;
+    const double t = static_cast<double>(ticks_) * s_.loop.tick_s();
+    error_ = attitude_error_rad();
+    if (error_ >= s_.settle_band_rad) last_outside_s_ = t;
+    const double m = plant_.singularity_measure();
+    if (m < min_measure_) {
+      min_measure_ = m;
+      min_measure_s_ = t;
+    }
+    if (m < s_.near_singular_measure) near_singular_ticks_ += 1;
+    peak_H_ = std::max(peak_H_, plant_.cmg_momentum_body().norm());
+    peak_rate_ = std::max(peak_rate_, plant_.body_rate().norm());
+    for (int i = 0; i < s_.plant.model.geometry.count; ++i) {
+      peak_gimbal_rate_ = std::max(peak_gimbal_rate_, std::fabs(plant_.gimbal_rate(i)));
+      peak_motor_torque_ = std::max(peak_motor_torque_, std::fabs(plant_.motor_torque(i)));
+    }
+    drift_ = std::max(drift_, (plant_.momentum_world() - L0_).norm());
+  }
+  bool finite() const { return plant_.finite(); }
+
+  static constexpr int kGuardedStates = Plant::kGuardedStates;
+  static const char* state_name(int i) { return Plant::state_name(i); }
+  double state_value(int i) const { return plant_.state_value(i); }
+
+  void record(double* row) const {
+    row[0] = error_ * kDeg;
+    const dynamics::Vec3 w = plant_.body_rate(), H = plant_.cmg_momentum_body();
+    for (int k = 0; k < 3; ++k) {
+      row[1 + k] = w[k];
+      row[4 + k] = H[k];
+    }
+    for (int i = 0; i < 4; ++i) row[7 + i] = plant_.delta(i);
+    row[11] = plant_.singularity_measure();
+    row[12] = static_cast<double>(last_.status);
+  }
+
+  nlohmann::json figures() const {
+    const auto& g = s_.plant.model.geometry;
+    const double h = s_.plant.model.h;
+    const double tick = s_.loop.tick_s();
+    const double duration = static_cast<double>(ticks_) * tick;
+    const bool settled = last_outside_s_ < duration;
+    dynamics::Vec3 axis(s_.slew_axis_x, s_.slew_axis_y, s_.slew_axis_z);
+    axis.normalize();
+    return {{"steering", s_.controller.steering.law == firmware::SteeringLaw::kPseudoInverse ? "pseudo_inverse"
+                                                                                          : "singularity_robust"},
+            {"slew_deg", s_.slew_rad * kDeg},
+            {"final_attitude_error_deg", error_ * kDeg},
+            {"settle_band_deg", s_.settle_band_rad * kDeg},
+            {"settling_time_s", settled ? nlohmann::json(last_outside_s_) : nlohmann::json(nullptr)},
+            {"min_singularity_measure", min_measure_},
+            {"min_singularity_measure_at_s", min_measure_s_},
+            {"singularity_measure_at_zero_momentum", g.singularity_measure(std::array<double, 4>{}.data())},
+            {"near_singular_time_s", static_cast<double>(near_singular_ticks_) * tick},
+            {"near_singular_measure", s_.near_singular_measure},
+            {"rate_limited_ticks", rate_limited_ticks_},
+            {"singular_ticks", singular_ticks_},
+            {"peak_cmg_momentum_Nms", peak_H_},
+            {"envelope_along_slew_axis_Nms", h * g.envelope_extent(axis)},
+            {"pyramid_internal_singularity_Nms",
+             s_.gimbal_axes.empty() ? nlohmann::json(2.0 * h * std::cos(s_.skew_rad)) : nlohmann::json(nullptr)},
+            {"envelope_x_Nms", h * g.envelope_extent(dynamics::Vec3::UnitX())},
+            {"envelope_y_Nms", h * g.envelope_extent(dynamics::Vec3::UnitY())},
+            {"envelope_z_Nms", h * g.envelope_extent(dynamics::Vec3::UnitZ())},
+            {"peak_body_rate_rad_s", peak_rate_},
+            {"peak_gimbal_rate_rad_s", peak_gimbal_rate_},
+            {"peak_gimbal_motor_torque_Nm", peak_motor_torque_},
+            {"momentum_drift_Nms", drift_},
+            {"ticks", ticks_}};
+  }
+
+  // report.json "error_estimate": up to 1 s from the middle of the run.
+  nlohmann::json error_estimate() const {
+    const auto apply = [](Plant::Dynamics& m, const Plant::HeldInputs& in) {
+      for (int i = 0; i < models::kMaxCmgs; ++i) m.inputs.rate_command[i] = in.rate_command[i];
+    };
+    return error_estimate_json<Plant::Model::kStateSize>(
+        window_.estimate<dynamics::Rk4>(plant_.dynamics(), apply, s_.loop.tick_ns, s_.loop.substeps, 4),
+        {"omega_x_rad_s", "omega_y_rad_s", "omega_z_rad_s", "q_x", "q_y", "q_z", "q_w", "delta_1_rad", "delta_2_rad",
+         "delta_3_rad", "delta_4_rad", "delta_rate_1_rad_s", "delta_rate_2_rad_s", "delta_rate_3_rad_s",
+         "delta_rate_4_rad_s", "servo_integral_1_rad", "servo_integral_2_rad", "servo_integral_3_rad",
+         "servo_integral_4_rad"},
+        "momentum_drift_Nms in the figures: the inertial angular momentum (no external torque)");
+  }
+
+ private:
+  double attitude_error_rad() const {
+    const dynamics::Quat e = reference_.conjugate() * plant_.attitude();
+    return 2.0 * std::atan2(e.vec().norm(), std::fabs(e.w()));
+  }
+
+  const CmgClusterScene& s_;
+  Plant plant_;
+  dynamics::Quat reference_;
+  dynamics::Vec3 L0_;
+  msg::ActuatorFrame last_{};
+  double error_{0.0};
+  double last_outside_s_{0.0};
+  double min_measure_{0.0}, min_measure_s_{0.0};
+  std::int64_t near_singular_ticks_{0}, rate_limited_ticks_{0}, singular_ticks_{0}, ticks_{0};
+  double peak_H_{0.0}, peak_rate_{0.0}, peak_gimbal_rate_{0.0}, peak_motor_torque_{0.0}, drift_{0.0};
+  analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
+};
+
+struct CmgClusterTraits {
+  using Scene = CmgClusterScene;
+  using Binding = CmgClusterRun;
+  using Controller = tools::Controller;
+  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
+  // The gimbal rate commands ride in the torque and voltage slots: their limit is the steering's rate limit.
+  static hil::ActuatorLimits actuator_limits(const Scene& s) {
+    hil::ActuatorLimits l;
+    const double r = s.controller.steering.max_rate * (1.0 + 1e-9);
+    l.torque_Nm[0] = l.torque_Nm[1] = r;
+    l.voltage_V[0] = l.voltage_V[1] = r;
+    l.from_scene = true;
+    return l;
+  }
+  static nlohmann::json limits(const Scene& s) {
+    return {{"max_gimbal_rate_rad_s", s.controller.steering.max_rate},
+            {"settle_band_deg", s.settle_band_rad * kDeg},
+            {"near_singular_measure", s.near_singular_measure}};
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<DeviceScene> make_cmg_cluster_scene(std::unique_ptr<CmgClusterScene> s) {
+  return std::make_unique<DeviceSceneOf<CmgClusterTraits>>(std::move(s));
+}
+
+}  // namespace gyrostab::tools
