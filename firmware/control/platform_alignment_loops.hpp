@@ -25,7 +25,8 @@
 //   levelling channel  z^L (z−1)² + T K1 (z−1) + T² K2 z = 0
 //   azimuth loop       z^L (z−1)³ + T (K1 (z−1) + T K2 z)(z−1) + T² Ω_N (k_a K2 T z + Ω_N (z−1) z^L) = 0
 //   (the Earth-rate coupling over one period to first order in Ω_N T ~ 1e-6); check() refuses gains for
-//   which either has a root on or outside the unit circle (Schur–Cohn recursion).
+//   which either has a root on or outside the unit circle (bilinear map to the w-plane built term by term,
+//   then Routh–Hurwitz: no cancellation for the roots clustered at z ≈ 1).
 // Commands: levelling gyros through their torquers, M = −H ω_c (the rate-integrating gyro of (16.2),
 // α0' = −M^K/H) clipped at ±torque_limit_Nm; the zenith gyro through a voltage-driven torquer of scale K_Z
 // [rad/s per V], u = ω_cU/K_Z clipped at ±voltage_limit_V.
@@ -55,7 +56,7 @@ struct PlatformAlignmentLoopParams {
   double settle_tilt_rad{0.0};          // 0: switch at levelling_min_s; else |θ̂| below this ...
   double settle_hold_s{10.0};           // ... in its mean over windows this long [s]
   double H{0.05};                       // torquer scale of the east and north gyros [N m s]
-  double azimuth_torquer_scale{1e-4};   // K_Z of the zenith gyro's torquer [rad/s per V]
+  double azimuth_torquer_scale{2e-4};   // K_Z of the zenith gyro's torquer [rad/s per V]
   double torque_limit_Nm{0.01};         // |M| ≤ this [N m]
   double voltage_limit_V{10.0};         // |u| ≤ this [V]
   int latency_periods{1};               // L: control periods from the frame to the applied command
@@ -168,82 +169,104 @@ class PlatformAlignmentLoops {
 inline constexpr int kAlignmentMaxLatency = 16;
 inline constexpr int kAlignmentPolyCapacity = kAlignmentMaxLatency + 4;  // degree ≤ L + 3
 
-// Polynomial in z with coefficients c[0..degree] (c[i] of z^i), fixed storage.
+// Polynomial with coefficients c[0..degree] (c[i] of x^i), fixed storage.
 struct AlignmentPoly {
   double c[kAlignmentPolyCapacity]{};
   int degree{0};
 };
 
 namespace detail {
-// p ← p · (z − 1).
-inline void times_z_minus_1(AlignmentPoly& p) {
-  for (int i = p.degree + 1; i >= 0; --i) p.c[i] = (i > 0 ? p.c[i - 1] : 0.0) - (i <= p.degree ? p.c[i] : 0.0);
-  ++p.degree;
+inline AlignmentPoly constant_poly(double k) {
+  AlignmentPoly p;
+  p.c[0] = k;
+  return p;
 }
-// p ← p · z^n.
-inline void times_z_power(AlignmentPoly& p, int n) {
-  for (int i = p.degree; i >= 0; --i) p.c[i + n] = p.c[i];
-  for (int i = 0; i < n; ++i) p.c[i] = 0.0;
-  p.degree += n;
+// p ← p · (a0 + a1 w)^n.
+inline void times_linear(AlignmentPoly& p, double a0, double a1, int n = 1) {
+  for (int r = 0; r < n; ++r) {
+    for (int i = p.degree + 1; i >= 0; --i) {
+      p.c[i] = (i <= p.degree ? a0 * p.c[i] : 0.0) + (i > 0 ? a1 * p.c[i - 1] : 0.0);
+    }
+    ++p.degree;
+  }
 }
-// p ← p + k · q.
-inline void add_scaled(AlignmentPoly& p, const AlignmentPoly& q, double k) {
-  for (int i = 0; i <= q.degree; ++i) p.c[i] += k * q.c[i];
+// p ← p + q.
+inline void add(AlignmentPoly& p, const AlignmentPoly& q) {
+  for (int i = 0; i <= q.degree; ++i) p.c[i] += q.c[i];
   if (q.degree > p.degree) p.degree = q.degree;
 }
 }  // namespace detail
 
-// Schur–Cohn: every root of p strictly inside the unit circle. Each step divides out the reflection
-// k = c0/c_n (|k| < 1 required) and continues with (p − k p*)/z, one degree lower. O(degree²).
-inline bool schur_stable(AlignmentPoly p) {
-  for (int n = p.degree; n > 0; --n) {
-    const double lead = p.c[n];
-    if (!(std::isfinite(lead) && lead != 0.0)) return false;
-    const double k = p.c[0] / lead;
-    if (!(std::fabs(k) < 1.0)) return false;
-    double next[kAlignmentPolyCapacity]{};
-    double scale = 0.0;
-    for (int i = 0; i < n; ++i) {
-      next[i] = p.c[i + 1] - k * p.c[n - 1 - i];
-      scale = std::fmax(scale, std::fabs(next[i]));
+// Routh–Hurwitz: every root of p in the open left half-plane (p's degree ≥ 1, leading coefficient > 0).
+// O(degree²).
+inline bool hurwitz_stable(const AlignmentPoly& p) {
+  const int n = p.degree;
+  if (n < 1) return false;
+  for (int i = 0; i <= n; ++i) {
+    if (!(std::isfinite(p.c[i]) && p.c[i] > 0.0)) return false;  // necessary: all coefficients positive
+  }
+  // Rows of the Routh array, highest power first: r0 = c_n, c_{n−2}, …; r1 = c_{n−1}, c_{n−3}, ….
+  constexpr int kW = kAlignmentPolyCapacity / 2 + 2;
+  double a[kW]{}, b[kW]{};
+  for (int j = 0; 2 * j <= n; ++j) a[j] = p.c[n - 2 * j];
+  for (int j = 0; 2 * j + 1 <= n; ++j) b[j] = p.c[n - 1 - 2 * j];
+  for (int row = 1; row <= n; ++row) {
+    if (!(b[0] > 0.0)) return false;  // first column must stay positive (a zero is marginal: refused)
+    double next[kW]{};
+    for (int j = 0; j + 1 < kW; ++j) next[j] = a[j + 1] - a[0] * b[j + 1] / b[0];
+    for (int j = 0; j < kW; ++j) {
+      a[j] = b[j];
+      b[j] = next[j];
     }
-    if (!(scale > 0.0)) return false;
-    for (int i = 0; i < n; ++i) p.c[i] = next[i] / scale;
-    p.c[n] = 0.0;
-    p.degree = n - 1;
   }
   return true;
 }
 
-// z^L (z−1)² + T K1 (z−1) + T² K2 z.
-inline AlignmentPoly levelling_characteristic(double K1, double K2, double T, int L) {
-  AlignmentPoly p;
-  p.c[0] = 1.0;
-  detail::times_z_power(p, L);
-  detail::times_z_minus_1(p);
-  detail::times_z_minus_1(p);
-  p.c[0] += -T * K1;
-  p.c[1] += T * K1 + T * T * K2;
+// The sampled loops' characteristic polynomials P(z) of the header, mapped by z = (1 + w)/(1 − w) (the unit
+// disc onto the left half-plane) and multiplied by (1 − w)^deg: each term is built from the binomials
+// directly, so that the roots clustered near z = 1 (|z − 1| ~ ω_L T ≪ 1) are not lost to cancellation in
+// expanded z-coefficients. z − 1 → 2w, z → 1 + w, 1 → 1 − w.
+// Levelling: z^L (z−1)² + T K1 (z−1) + T² K2 z.
+inline AlignmentPoly levelling_characteristic_w(double K1, double K2, double T, int L) {
+  using detail::times_linear;
+  AlignmentPoly p = detail::constant_poly(4.0);  // (2w)² (1+w)^L
+  times_linear(p, 0.0, 1.0, 2);
+  times_linear(p, 1.0, 1.0, L);
+  AlignmentPoly q = detail::constant_poly(2.0 * T * K1);  // T K1 (2w)(1−w)^{L+1}
+  times_linear(q, 0.0, 1.0);
+  times_linear(q, 1.0, -1.0, L + 1);
+  detail::add(p, q);
+  AlignmentPoly r = detail::constant_poly(T * T * K2);  // T² K2 (1+w)(1−w)^{L+1}
+  times_linear(r, 1.0, 1.0);
+  times_linear(r, 1.0, -1.0, L + 1);
+  detail::add(p, r);
   return p;
 }
 
-// z^L (z−1)³ + T (K1 (z−1) + T K2 z)(z−1) + T² Ω_N (k_a K2 T z + Ω_N (z−1) z^L).
-inline AlignmentPoly azimuth_characteristic(const PlatformAlignmentGains& g, double T, int L) {
-  AlignmentPoly zl;
-  zl.c[0] = 1.0;
-  detail::times_z_power(zl, L);
-  AlignmentPoly p = zl;
-  for (int i = 0; i < 3; ++i) detail::times_z_minus_1(p);
-  AlignmentPoly q;  // (K1 (z−1) + T K2 z)(z−1)
-  q.degree = 1;
-  q.c[0] = -g.K1;
-  q.c[1] = g.K1 + T * g.K2;
-  detail::times_z_minus_1(q);
-  detail::add_scaled(p, q, T);
-  AlignmentPoly r = zl;  // Ω_N (z−1) z^L
-  detail::times_z_minus_1(r);
-  detail::add_scaled(p, r, T * T * g.Omega_N * g.Omega_N);
-  p.c[1] += T * T * g.Omega_N * g.k_a * g.K2 * T;
+// Azimuth: z^L (z−1)³ + T K1 (z−1)² + T² K2 z (z−1) + T³ Ω_N k_a K2 z + T² Ω_N² (z−1) z^L.
+inline AlignmentPoly azimuth_characteristic_w(const PlatformAlignmentGains& g, double T, int L) {
+  using detail::times_linear;
+  AlignmentPoly p = detail::constant_poly(8.0);  // (2w)³ (1+w)^L
+  times_linear(p, 0.0, 1.0, 3);
+  times_linear(p, 1.0, 1.0, L);
+  AlignmentPoly q = detail::constant_poly(4.0 * T * g.K1);  // T K1 (2w)² (1−w)^{L+1}
+  times_linear(q, 0.0, 1.0, 2);
+  times_linear(q, 1.0, -1.0, L + 1);
+  detail::add(p, q);
+  AlignmentPoly r = detail::constant_poly(2.0 * T * T * g.K2);  // T² K2 (1+w)(2w)(1−w)^{L+1}
+  times_linear(r, 1.0, 1.0);
+  times_linear(r, 0.0, 1.0);
+  times_linear(r, 1.0, -1.0, L + 1);
+  detail::add(p, r);
+  AlignmentPoly u = detail::constant_poly(T * T * T * g.Omega_N * g.k_a * g.K2);  // … (1+w)(1−w)^{L+2}
+  times_linear(u, 1.0, 1.0);
+  times_linear(u, 1.0, -1.0, L + 2);
+  detail::add(p, u);
+  AlignmentPoly v = detail::constant_poly(2.0 * T * T * g.Omega_N * g.Omega_N);  // … (2w)(1+w)^L (1−w)²
+  times_linear(v, 0.0, 1.0);
+  times_linear(v, 1.0, 1.0, L);
+  times_linear(v, 1.0, -1.0, 2);
+  detail::add(p, v);
   return p;
 }
 
@@ -295,13 +318,13 @@ inline ConfigCheck check_platform_alignment_loops(const PlatformAlignmentLoopPar
         "azimuth_time_constant_equator)",
         p.azimuth_time_constant_equator, g.K2 * g.Omega_N / (p.earth_rate * g.K1 * (g.K2 + g.Omega_N * g.Omega_N)));
   }
-  if (!schur_stable(levelling_characteristic(g.K1, g.K2, T, p.latency_periods))) {
+  if (!hurwitz_stable(levelling_characteristic_w(g.K1, g.K2, T, p.latency_periods))) {
     return ConfigCheck::refused(
         "platform alignment: the sampled levelling loop is unstable at this control period and latency (lower "
         "levelling_bandwidth)",
         p.levelling_bandwidth * T);
   }
-  if (!schur_stable(azimuth_characteristic(g, T, p.latency_periods))) {
+  if (!hurwitz_stable(azimuth_characteristic_w(g, T, p.latency_periods))) {
     return ConfigCheck::refused(
         "platform alignment: the sampled azimuth loop is unstable at this control period and latency",
         p.azimuth_time_constant_equator);

@@ -60,7 +60,7 @@ struct PlatformAlignmentPlantParams {
   models::PlatformMisalignment initial{};  // θ_E, θ_N, ψ at t = 0 [rad]
   double gravity{9.81};                    // plumb-line gravity g [m/s²]
   double H{0.05};                          // torquer scale of the east and north gyros [N m s]
-  double azimuth_torquer_scale{1e-4};      // K_Z [rad/s per V]
+  double azimuth_torquer_scale{2e-4};      // K_Z [rad/s per V]
   double accel_noise_density{0.0};         // [m/s²/√Hz]
   AlignmentBaseMotion base{};
 };
