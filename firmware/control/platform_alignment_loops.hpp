@@ -51,7 +51,7 @@ struct PlatformAlignmentLoopParams {
   double gravity_scale{9.80665};        // g0: θ̂ = a/g0 in the sensor frame [m/s²]
   double levelling_bandwidth{0.1};      // ω_L [rad/s]
   double levelling_damping{0.7};        // ζ [-]
-  double azimuth_time_constant_equator{75.0};  // τ_A0 [s]: k_a = 1/(ω^E τ_A0)
+  double azimuth_time_constant_equator{95.0};  // τ_A0 [s]: k_a = 1/(ω^E τ_A0)
   double levelling_min_s{120.0};        // azimuth phase not before [s]
   double settle_tilt_rad{0.0};          // 0: switch at levelling_min_s; else |θ̂| below this ...
   double settle_hold_s{10.0};           // ... in its mean over windows this long [s]

@@ -260,7 +260,7 @@ TEST(PlatformAlignmentOracle, ResidualsOfBiasesAndDrifts) {
     });
     const PlatformMisalignment ss = oracles::steady_misalignment(g, L.plant.platform, L.plant.gravity);
     const double drift_term = -L.plant.platform.drift.x() / (kWe * std::cos(lat * kDeg));
-    std::printf("residuals at %g deg: theta_E %.6e (%.6e), theta_N %.6e (%.6e), psi %.6e (%.6e; -eps_E/(wE cos) "
+    std::printf("residuals at %g deg: theta_E %.10e (%.10e), theta_N %.10e (%.10e), psi %.8e (%.8e; -eps_E/(wE cos) "
                 "%.6e)\n",
                 lat, end.tilt_east, ss.tilt_east, end.tilt_north, ss.tilt_north, end.heading_error, ss.heading_error,
                 drift_term);

@@ -54,6 +54,7 @@ SCENES = {
     "schuler-gyro-pendulum": "gyro_pendulum",
     "gimbal-error-heading-gyro-turn": "gimbal_error",
     "u-gyro-rate-table": "u_gyro",
+    "platform-alignment-aircraft": "platform_alignment",
 }
 
 failures = []

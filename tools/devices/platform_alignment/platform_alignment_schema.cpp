@@ -111,10 +111,10 @@ constexpr schema::Field<S> kFields[] = {
     F::number("alignment", "max_time_s", "s", Range::positive(), "the alignment must be done by then",
               GS_NUMBER(max_time_s)),
     F::number("alignment", "heading_tolerance_deg", "deg", Range::open_closed(0.0, 10.0),
-              "aligned: |ψ| at most this", GS_NUMBER(heading_tolerance))
+              "aligned: the heading error ψ within ± this", GS_NUMBER(heading_tolerance))
         .degrees(),
     F::number("alignment", "tilt_tolerance_deg", "deg", Range::open_closed(0.0, 1.0),
-              "… and |θ_E|, |θ_N| at most this", GS_NUMBER(tilt_tolerance))
+              "… and the tilts θ_E, θ_N within ± this", GS_NUMBER(tilt_tolerance))
         .degrees(),
 };
 
