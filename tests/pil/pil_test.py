@@ -64,6 +64,7 @@ SCENES = {
     "cmg-cluster-slew": "cmg_cluster",
     "cmg-cluster-singularity-pseudo-inverse": "cmg_cluster",
     "cmg-cluster-singularity-robust": "cmg_cluster",
+    "platform-alignment-aircraft": "platform_alignment",
 }
 
 failures = []

@@ -17,7 +17,8 @@ namespace gyrostab::tools {
   X(kConing)                \
   X(kFoucaultGyro)          \
   X(kPositionGyroPlatform)  \
-  X(kCmgCluster)
+  X(kCmgCluster)            \
+  X(kPlatformAlignment)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,
