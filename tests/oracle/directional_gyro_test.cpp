@@ -161,6 +161,7 @@ struct Turn {
   using State = models::DirectionalGyro::State;
   mutable models::DirectionalGyro gyro;
   firmware::DirectionalGyroCorrectionParams law;
+  double turn_signal{0.0};  // what the turn-rate sensor reads (the cut-out's input) [rad/s]
   Turn(double H, double k, double bank, double yaw_rate) : gyro(models::DirectionalGyroParams{H}) {
     law.H = H;
     law.compensate = false;
@@ -169,7 +170,8 @@ struct Turn {
     gyro.inputs.case_rate.hold(plants::case_rate_of(dynamics::Vec3(0.0, 0.0, -yaw_rate), bank, 0.0));
   }
   void derivative(double t, const State& x, State& dx) const {
-    const firmware::DirectionalGyroTorques m = firmware::directional_gyro_corrections(law, {0.0, x[1], 0.0, 0.0});
+    const firmware::DirectionalGyroTorques m =
+        firmware::directional_gyro_corrections(law, {0.0, x[1], 0.0, turn_signal});
     gyro.inputs.M1 = m.M1;
     gyro.inputs.M2 = m.M2;
     gyro.derivative(t, x, dx);
@@ -309,6 +311,39 @@ TEST(DirectionalGyroOracle, TurnErrorNeglectedOrdersScaleWithTheBank) {
     EXPECT_NEAR(rb, 8.0, 1.0) << c;
     EXPECT_NEAR(rd, 16.0, 2.0) << c;
   }
+}
+
+TEST(DirectionalGyroOracle, TurnCutOutLeavesTheFreeGyrosExactKinematics) {
+  // The book's remedy: no correction in the turn (c = 0), no turn error. The rotor then stays fixed in space,
+  // δ = 0, and the gimbal angles are the exact kinematics of the "321" heading gyro in a level turn:
+  // sin β = −sin φ0 sin ψ (so β^K of (12.25) to first order), tan α = tan ψ cos φ0 ((12.13)). At 20° bank over
+  // two turns, RK4 at 10 ms on rates ≤ ψ'0 = 0.052 /s: tolerance 1e-9 rad (the integration's error ~1e-12).
+  const double yaw_rate = 3.0 * kDeg, H = 0.1, phi0 = 20.0 * kDeg;
+  Turn turn(H, 1.0 * H * yaw_rate, phi0, yaw_rate);
+  turn.law.turn_cutout_rate = 1.0 * kDeg;
+  turn.turn_signal = yaw_rate;
+  dynamics::Rk4<Turn> rk4(turn);
+  Turn::State x = models::DirectionalGyro::make_state(0.0, 0.0);
+  const double h = 0.01;
+  double worst_delta = 0.0, worst_beta = 0.0, worst_alpha = 0.0;
+  for (int i = 0; i < 24000; ++i) {
+    rk4.step(i * h, h, x);
+    const double psi = (i + 1) * h * yaw_rate;
+    worst_delta = std::max(worst_delta, std::fabs(rotor_azimuth(x[0], x[1], phi0, psi)));
+    worst_beta = std::max(worst_beta, std::fabs(x[1] - std::asin(-std::sin(phi0) * std::sin(psi))));
+    const double alpha_exact = std::atan2(std::sin(psi) * std::cos(phi0), std::cos(psi));
+    worst_alpha = std::max(worst_alpha, std::fabs(std::remainder(x[0] - alpha_exact, 2 * kPi)));
+  }
+  // The law alone at β = 0.1 in the turn: the cut-out removes M1 and says so.
+  const firmware::DirectionalGyroTorques cut =
+      firmware::directional_gyro_corrections(turn.law, {0.0, 0.1, 0.0, yaw_rate});
+  std::printf("cut out: max |delta| %.3e, max |beta - exact| %.3e, max |alpha - (12.13)| %.3e rad\n", worst_delta,
+              worst_beta, worst_alpha);
+  EXPECT_TRUE(cut.cut_out);
+  EXPECT_EQ(cut.M1, 0.0);
+  EXPECT_LT(worst_delta, 1e-9);
+  EXPECT_LT(worst_beta, 1e-9);
+  EXPECT_LT(worst_alpha, 1e-9);
 }
 
 // ---------------------------------------------------------------------------------------------------------
