@@ -49,6 +49,8 @@ SCENES = {
     "servo-gyro": "servo_gyro",
     "gyro-vertical-aircraft-turn": "gyro_vertical",
     "gyro-vertical-dead-zone": "gyro_vertical",
+    "directional-gyro-earth-rate": "directional_gyro",
+    "directional-gyro-turn-error": "directional_gyro",
     "gyrocompass-fixed-base-settling": "gyrocompass",
     "gyrocompass-ship-crossing-latitudes": "gyrocompass",
     "inertial-platform-schuler": "inertial_platform",

@@ -9,6 +9,7 @@ namespace gyrostab::tools {
   X(kMonorail)              \
   X(kServoGyro)             \
   X(kGyroVertical)          \
+  X(kDirectionalGyro)       \
   X(kGyrocompass)           \
   X(kInertialPlatform)      \
   X(kGyroPendulum)          \
