@@ -31,8 +31,11 @@ inline constexpr int kMaxCmgs = 4;  // the contract carries four gimbal angles a
 
 struct CmgGeometry {
   int count{0};
-  std::array<dynamics::Vec3, kMaxCmgs> gimbal_axis{};  // g_i, unit, body axes
-  std::array<dynamics::Vec3, kMaxCmgs> spin_axis0{};   // s0_i, unit, ⟂ g_i: the spin axis at δ_i = 0
+  // Zeroed explicitly: a value-initialised Eigen vector is not.
+  std::array<dynamics::Vec3, kMaxCmgs> gimbal_axis{dynamics::Vec3::Zero(), dynamics::Vec3::Zero(),
+                                                   dynamics::Vec3::Zero(), dynamics::Vec3::Zero()};  // g_i, unit, body axes
+  std::array<dynamics::Vec3, kMaxCmgs> spin_axis0{dynamics::Vec3::Zero(), dynamics::Vec3::Zero(), dynamics::Vec3::Zero(),
+                                                  dynamics::Vec3::Zero()};  // s0_i, unit, ⟂ g_i: the spin axis at δ_i = 0
 
   // nullptr if usable, else the reason.
   const char* invalid_reason() const {

@@ -77,23 +77,23 @@ double mean_indicated_rate(const ConingGyroParams& p, const CaseVibration& v, in
   ConingGyro g(p);
   const double T = p.gyro.sample_period;
   const auto per_period = static_cast<long>(std::llround(2.0 * kPi / (v.nu * T)));
-  EXPECT_NEAR(per_period * v.nu * T, 2.0 * kPi, 1e-9) << "the sample period divides the vibration period";
+  EXPECT_NEAR(static_cast<double>(per_period) * v.nu * T, 2.0 * kPi, 1e-9) << "the sample period divides the vibration period";
   long k = 0;
-  for (; k < settle_periods * per_period; ++k) g.update(v, k * T);
+  for (; k < settle_periods * per_period; ++k) g.update(v, static_cast<double>(k) * T);
   double sum = 0.0, first = 0.0, last = 0.0;
   const long n = periods * per_period;
   for (long j = 0; j < n; ++j, ++k) {
     sum += g.indicated_rate();
     if (j < per_period) first += g.indicated();
     if (j >= n - per_period) last += g.indicated();
-    g.update(v, k * T);
+    g.update(v, static_cast<double>(k) * T);
   }
   if (p.gyro.c2 > 0.0) return sum / static_cast<double>(n);
   // I-gyro: the slope between the indicated angle averaged over the first and over the last period. Values
   // at one phase would not do: as β drifts, the effective axis picks up the spin-axis vibration by sin β,
   // an oscillation of the reading whose amplitude grows with β, so its values at one phase drift with it
   // although its mean does not.
-  return (last - first) / static_cast<double>(per_period) / ((periods - 1) * per_period * T);
+  return (last - first) / static_cast<double>(per_period) / (static_cast<double>((periods - 1) * per_period) * T);
 }
 
 // (a) The P-gyro under planar vibration, Φ = 0.01 rad at 5 Hz about an axis at δ = 45° between the input and
@@ -370,7 +370,7 @@ ClosedLoopRun run_closed_loop(const plants::ConingPlantParams& pp, const firmwar
     }
     plant.advance(k);
   }
-  r.drift = (last - first) / static_cast<double>(per) / ((n - per) * T);
+  r.drift = (last - first) / static_cast<double>(per) / (static_cast<double>(n - per) * T);
   r.mean_cos_phi = sum_cos / static_cast<double>(n);
   return r;
 }
