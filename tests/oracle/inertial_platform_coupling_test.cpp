@@ -145,17 +145,20 @@ TEST(InertialPlatformCoupling, IntegratingGyroOffsets16_15_16_17) {
     ThreeAxisPlatform::State x = ThreeAxisPlatform::State::Zero();
     const double h = 2.5e-3;
     for (int n = 0; n < 16000; ++n) integ.step(n * h, h, x);
+    double worst = 0.0;
     for (int i = 0; i < 3; ++i) {
       const PlatformAxisParams& a = p.axis[i];
+      worst = std::max({worst, std::fabs(x[6 + i] / (MS[i] / a.k) - 1.0),
+                        std::fabs(x[i] / (a.d * MS[i] / (a.k * a.H)) - 1.0)});
       // (16.15): β0^X = −M10/k, β0^Y = M20/k, β0^Z = M30/k; here every β_i counts +(H/d)·rate (β_1 = −β^X).
       EXPECT_NEAR(x[ThreeAxisPlatform::kGyroAngle + i] / (MS[i] / a.k), 1.0, 1e-10) << i;
       // (16.17): α0 = d M10/(kH), β0 = d M20/(kH), γ0 = d M30/(kH).
       EXPECT_NEAR(x[ThreeAxisPlatform::kTilt + i] / (a.d * MS[i] / (a.k * a.H)), 1.0, 1e-10) << i;
       EXPECT_NEAR(x[ThreeAxisPlatform::kPlatformRate + i], 0.0, 1e-15) << i;
     }
-    std::printf("%s: beta %.6e %.6e %.6e, tilts %.6e %.6e %.6e (d M/(kH) = %.6e ...)\n",
+    std::printf("%s: beta %.6e %.6e %.6e, tilts %.6e %.6e %.6e (d M/(kH) = %.6e ...); worst relative error %.2e\n",
                 c == PlatformCoupling::kFull ? "full" : "decoupled", x[6], x[7], x[8], x[0], x[1], x[2],
-                p.axis[0].d * MS[0] / (p.axis[0].k * p.axis[0].H));
+                p.axis[0].d * MS[0] / (p.axis[0].k * p.axis[0].H), worst);
   }
 }
 
@@ -198,15 +201,16 @@ TEST(InertialPlatformCoupling, PositionGyroOffsets16_22_16_25) {
   const Eigen::Vector3d book((MS[0] + d / H * MS[2]) / k, (MS[1] - d / H * MS[2]) / k,
                              (MS[2] + d / (2 * H) * (MS[1] - MS[0])) / k);
   const double scale = 2e-3 / k;  // max |M^S|/k
-  double book_err = 0.0;
+  double book_err = 0.0, exact_err = 0.0;
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(x[M::kTilt + i], exact[i], 1e-10 * scale) << i;
+    exact_err = std::max(exact_err, std::fabs(x[M::kTilt + i] - exact[i]) / scale);
     book_err = std::max(book_err, std::fabs(book[i] - x[M::kTilt + i]) / scale);
   }
   std::printf("position gyros: tilts %.8e %.8e %.8e, exact %.8e %.8e %.8e, (16.25) %.8e %.8e %.8e; "
-              "(16.25) error %.3e of M/k ((d/H)^2 = %.3e)\n",
+              "(16.25) error %.3e of M/k ((d/H)^2 = %.3e), sim vs exact %.2e\n",
               x[0], x[1], x[2], exact[0], exact[1], exact[2], book[0], book[1], book[2], book_err,
-              d * d / (H * H));
+              d * d / (H * H), exact_err);
   // (16.25) drops the (d/H)² terms (from H²/(H² + d²) and the products of two d/H cross terms): the error is at
   // most a few (d/H)² of max|M|/k — bound 3 (d/H)² (the γ line carries 2 + 1/2 such terms); and it is not exact:
   // more than 0.1 (d/H)².
@@ -258,6 +262,8 @@ TEST(InertialPlatformCoupling, FullPencilIsTheModel16_14) {
     ASSERT_EQ(book.size(), 12u);
     const Roots book9 = nonzero(book);
     ASSERT_EQ(book9.size(), 9u);
+    std::printf("B %.0e: model vs book pencil, worst relative root distance %.2e\n", B,
+                std::max(worst_relative_match(model, book9), worst_relative_match(book9, model)));
     EXPECT_LT(worst_relative_match(model, book9), 1e-9) << B;
     EXPECT_LT(worst_relative_match(book9, model), 1e-9) << B;
   }

@@ -147,7 +147,9 @@ class InertialPlatformRun {
                        {"position_error_max_book_16_47_m", 2.0 * R * std::fabs(e0)},
                        {"servo_offset_book_16_2_rad", servo_offset_book(a)},
                        {"gyro_angle_end_rad", plant_.gyro_angle_rad(i)},
-                       {"servo_gain_limit_16_5", a.k_max()},
+                       {"servo_gain_limit_16_5", std::is_same_v<Model, models::PositionGyroPlatform>
+                                                     ? nlohmann::json(nullptr)  // no upper bound (16.9)
+                                                     : nlohmann::json(a.k_max())},
                        {"drift_position_rate_book_16_50_m_s", -a.drift * R},
                        {"extrema", c.extrema.count()}};
       j["period_measured_s"] =

@@ -157,7 +157,7 @@ constexpr schema::Rule<S> kRules[] = {
        char buf[320];
        std::snprintf(buf, sizeof buf,
                      "the platform's servo is unstable with its cross-coupling: root %.4g %+.4gi /s (real part "
-                     "must be < 0); lower the gains k of `[axisN]` (or raise H / d)",
+                     "must be < 0); lower the gains k of `[axisN]`, or raise H or d",
                      st.worst.real(), st.worst.imag());
        return buf;
      }},
