@@ -248,6 +248,63 @@ TEST(InertialPlatformCoupling, QuasiStaticGimbalRates16_23) {
   EXPECT_GT(std::fabs(x[M::kGimbalRate] + g), 0.5 * d / H * std::fabs(b));
 }
 
+// (16.26) from (16.19)-(16.21) with quasi-static gimbals: α^Y = −σ α + ε γ, β^X = −σ β − ε γ, α^X = ε β − σ γ,
+// β^Y = −ε α − σ γ. Exact quasi-static (16.23): σ = H²/(H² + d²), ε = H d/(H² + d²); first order (16.24): σ = 1,
+// ε = d/H. `gamma_k` the weight of the γ line's k ε (α − β) term: 0.5 derived, 1 as printed.
+Roots reduced_position(double J, double k, double d, double sigma, double eps, double gamma_k) {
+  Eigen::MatrixXd M = J * Eigen::MatrixXd::Identity(3, 3), D = Eigen::MatrixXd::Zero(3, 3), F = D;
+  D(0, 0) = d * sigma, D(1, 1) = d * sigma, D(2, 2) = 2 * d * sigma;
+  D(0, 2) = -d * eps, D(1, 2) = d * eps, D(2, 0) = d * eps, D(2, 1) = -d * eps;
+  F(0, 0) = F(1, 1) = F(2, 2) = k * sigma;
+  F(0, 2) = -k * eps, F(1, 2) = k * eps, F(2, 0) = gamma_k * k * eps, F(2, 1) = -gamma_k * k * eps;
+  return pencil_roots(M, D, F);
+}
+
+TEST(InertialPlatformCoupling, PositionGyroPencilAgainstTheReducedForm16_26) {
+  // The model's 11 roots (one zero: the rotors' relative azimuth) against the reduced form. A large H
+  // (20 N m s, H/d = 50, nutation H/B = 2000 resp. 8000 rad/s) makes the gimbals nearly quasi-static. With the
+  // exact quasi-static relations (16.23) what remains is the gimbals' inertia B: the error must fall in
+  // proportion to B (measured 2.7e-4 → 6.8e-5 of |λ|, ratio 4.0 for B / 4; accepted 4 ± 10 %), and stay below
+  // (d/H)². (16.26) as derived (first order, (16.24)) also drops (d/H)² of the stiffness (H²/(H² + d²) = 1 −
+  // (d/H)²): tolerance (d/H)² = 4e-4 of |λ| on every root (measured 2.9e-4, 2.0e-4). The printed k d/H in its
+  // γ line (twice the derived k d/(2H)) moves the damping of the azimuth-coupled modes: its real parts miss by
+  // more than (d/H)² |λ| and more than the derived form's (measured 7.5e-4, 6.8e-4 against 2.9e-4, 1.8e-4).
+  const double J = 0.02, k = 50.0, H = 20.0, d = 0.4, e = d / H, sg = H * H / (H * H + d * d), ex = H * d / (H * H + d * d);
+  double err_exact[2];
+  int j = 0;
+  for (const double B : {1e-2, 2.5e-3}) {
+    PositionGyroPlatformParams p = position_scene();
+    for (PlatformAxisParams& a : p.axis) a.H = H, a.d = d, a.B = B;
+    const Roots full = sorted(dynamics::eigenvalues(models::servo_matrix<PositionGyroPlatform>(p)));
+    EXPECT_EQ(models::servo_stability<PositionGyroPlatform>(p).neutral, 1);
+    const Roots exact = reduced_position(J, k, d, sg, ex, 0.5);
+    const Roots derived = reduced_position(J, k, d, 1.0, e, 0.5);
+    const Roots printed = reduced_position(J, k, d, 1.0, e, 1.0);
+    err_exact[j] = worst_relative_match(exact, full);
+    const double err_derived = worst_relative_match(derived, full);
+    // Real parts: each reduced root's real part against its nearest full root's, relative to |λ|.
+    const auto re_err = [&](const Roots& r) {
+      double w = 0.0;
+      for (const cplx l : r) {
+        cplx best = full[0];
+        for (const cplx m : full)
+          if (std::abs(l - m) < std::abs(l - best)) best = m;
+        w = std::max(w, std::fabs(l.real() - best.real()) / std::abs(l));
+      }
+      return w;
+    };
+    const double nut = H / B;
+    std::printf("position gyros, H = 20, B = %.1e: reduced vs 11th-order roots: exact quasi-static %.2e "
+                "(nutation %.0f rad/s), (16.26) derived %.2e ((d/H)^2 = %.1e); real parts: derived %.2e, printed %.2e\n",
+                B, err_exact[j], nut, err_derived, e * e, re_err(derived), re_err(printed));
+    EXPECT_LT(err_exact[j], e * e);
+    EXPECT_LT(err_derived, e * e);
+    EXPECT_GT(re_err(printed), std::max(re_err(derived), e * e));
+    ++j;
+  }
+  EXPECT_NEAR(err_exact[0] / err_exact[1], 4.0, 0.4);
+}
+
 // --- (b) the pencil (16.14) and the reduced form (16.18) ----------------------------------------------------
 
 TEST(InertialPlatformCoupling, FullPencilIsTheModel16_14) {
