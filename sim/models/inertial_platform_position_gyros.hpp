@@ -41,11 +41,11 @@
 
 namespace gyrostab::models {
 
-struct PositionGyroPlatformParams {
+struct TwoPositionGyroPlatformParams {
   PlatformAxisParams axis[3]{};  // platform axes 1, 2 (level), 3 (up); gyro Y from axis 1, gyro X from axis 2
 };
 
-class PositionGyroPlatform {
+class TwoPositionGyroPlatform {
  public:
   static constexpr int kStateSize = 14;
   using State = Eigen::Matrix<double, 14, 1>;
@@ -59,11 +59,11 @@ class PositionGyroPlatform {
     double torquer[3]{0.0, 0.0, 0.0};  // channel commands M_1, M_2 [N m]; [2] unused
   };
 
-  explicit PositionGyroPlatform(const PositionGyroPlatformParams& p = {}) : p_(p) {}
+  explicit TwoPositionGyroPlatform(const TwoPositionGyroPlatformParams& p = {}) : p_(p) {}
 
   Inputs inputs{};
 
-  const PositionGyroPlatformParams& params() const { return p_; }
+  const TwoPositionGyroPlatformParams& params() const { return p_; }
 
   void derivative(double t, const State& x, State& dx) const {
     const FrameSample w = inputs.frame.at(t);
@@ -123,7 +123,7 @@ class PositionGyroPlatform {
     T[3] = -inputs.torquer[0] + gY.H * a[0].drift - gY.d * x[13] - gY.c * x[kBetaY];
   }
 
-  PositionGyroPlatformParams p_;
+  TwoPositionGyroPlatformParams p_;
 };
 
 }  // namespace gyrostab::models

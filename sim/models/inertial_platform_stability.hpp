@@ -22,7 +22,7 @@
 namespace gyrostab::models {
 
 // The system matrix of the servo states (x without the tilts) of `Model` (ThreeAxisPlatform,
-// PositionGyroPlatform) with parameters p: exact, column by column (the model is linear in them; the
+// TwoPositionGyroPlatform) with parameters p: exact, column by column (the model is linear in them; the
 // constant torques and drifts are set to zero).
 template <class Model, class Params>
 Eigen::MatrixXd servo_matrix(const Params& p) {

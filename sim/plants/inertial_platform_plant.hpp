@@ -152,8 +152,8 @@ struct PlatformAxes<models::ThreeAxisPlatform> {
 };
 
 template <>
-struct PlatformAxes<models::PositionGyroPlatform> {
-  using M = models::PositionGyroPlatform;
+struct PlatformAxes<models::TwoPositionGyroPlatform> {
+  using M = models::TwoPositionGyroPlatform;
   static constexpr int kChannels = 2;
   static constexpr std::array<const char*, M::kStateSize> kStateNames{
       "tilt1_rad",          "tilt2_rad",          "tilt3_rad",          "platform_rate1_rad_s",
@@ -187,7 +187,7 @@ struct PlatformAxes<models::PositionGyroPlatform> {
     return x;
   }
   static M make(const InertialPlatformPlantParams& p) {
-    models::PositionGyroPlatformParams q;
+    models::TwoPositionGyroPlatformParams q;
     for (int i = 0; i < 3; ++i) q.axis[i] = p.axis[i].params;
     return M(q);
   }

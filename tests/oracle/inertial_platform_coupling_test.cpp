@@ -35,8 +35,8 @@ namespace inertial_platform_coupling_test {
 
 using models::PlatformAxisParams;
 using models::PlatformCoupling;
-using models::PositionGyroPlatform;
-using models::PositionGyroPlatformParams;
+using models::TwoPositionGyroPlatform;
+using models::TwoPositionGyroPlatformParams;
 using models::ThreeAxisPlatform;
 using models::ThreeAxisPlatformParams;
 using cplx = std::complex<double>;
@@ -163,26 +163,26 @@ TEST(InertialPlatformCoupling, IntegratingGyroOffsets16_15_16_17) {
 }
 
 // The shipped position-gyro scene's platform: H/d = 50, frames at 8 Hz, nutation at 32 Hz.
-PositionGyroPlatformParams position_scene() {
-  PositionGyroPlatformParams p;
+TwoPositionGyroPlatformParams position_scene() {
+  TwoPositionGyroPlatformParams p;
   for (PlatformAxisParams& a : p.axis) a.J = 0.02, a.k = 50.0, a.H = 2.0, a.B = 1e-2, a.d = 0.04;
   return p;
 }
 
 TEST(InertialPlatformCoupling, PositionGyroOffsets16_22_16_25) {
-  PositionGyroPlatformParams p = position_scene();
+  TwoPositionGyroPlatformParams p = position_scene();
   const double MS[3] = {2e-3, -1e-3, 1.5e-3};
   for (int i = 0; i < 3; ++i) p.axis[i].disturbance = MS[i];
-  PositionGyroPlatform m(p);
+  TwoPositionGyroPlatform m(p);
   m.inputs.frame.hold({});
-  dynamics::Rk4<PositionGyroPlatform> integ(m);
-  PositionGyroPlatform::State x = PositionGyroPlatform::State::Zero();
+  dynamics::Rk4<TwoPositionGyroPlatform> integ(m);
+  TwoPositionGyroPlatform::State x = TwoPositionGyroPlatform::State::Zero();
   // The slowest decaying root is −0.64 /s (the stability check's margin): 100 s leave e^-64; h = 1 ms on the
   // 200 rad/s nutation (h|λ| = 0.2).
   const double h = 1e-3;
   for (int n = 0; n < 100000; ++n) integ.step(n * h, h, x);
   const double k = p.axis[0].k, H = p.axis[0].H, d = p.axis[0].d;
-  using M = PositionGyroPlatform;
+  using M = TwoPositionGyroPlatform;
   // (16.22), exact at rest (the platform lines with zero rates): α^Y = −M1/k, β^X = −M2/k, α^X + β^Y = −2M3/k.
   EXPECT_NEAR(x[M::kAlphaY] / (-MS[0] / k), 1.0, 1e-10);
   EXPECT_NEAR(x[M::kBetaX] / (-MS[1] / k), 1.0, 1e-10);
@@ -225,12 +225,12 @@ TEST(InertialPlatformCoupling, QuasiStaticGimbalRates16_23) {
   // (α', β', γ'): the gimbals' rates settle on (16.23). The damper and servo torques change the rates by
   // ≲ (d·1e-3 + k·1e-2)/J × 10 s ≈ 4e-13 rad/s: 4e-10 relative. The nutation decays at ≈ d/B = 4 /s: e^-40 in
   // 10 s. Tolerance 1e-8 relative.
-  PositionGyroPlatformParams p = position_scene();
+  TwoPositionGyroPlatformParams p = position_scene();
   for (PlatformAxisParams& a : p.axis) a.J = 1e9, a.k = 1e-6;
-  PositionGyroPlatform m(p);
+  TwoPositionGyroPlatform m(p);
   m.inputs.frame.hold({});
-  dynamics::Rk4<PositionGyroPlatform> integ(m);
-  using M = PositionGyroPlatform;
+  dynamics::Rk4<TwoPositionGyroPlatform> integ(m);
+  using M = TwoPositionGyroPlatform;
   M::State x = M::State::Zero();
   const double w[3] = {1e-3, -2e-3, 1.5e-3};
   for (int i = 0; i < 3; ++i) x[M::kPlatformRate + i] = w[i];
@@ -273,10 +273,10 @@ TEST(InertialPlatformCoupling, PositionGyroPencilAgainstTheReducedForm16_26) {
   double err_exact[2];
   int j = 0;
   for (const double B : {1e-2, 2.5e-3}) {
-    PositionGyroPlatformParams p = position_scene();
+    TwoPositionGyroPlatformParams p = position_scene();
     for (PlatformAxisParams& a : p.axis) a.H = H, a.d = d, a.B = B;
-    const Roots full = sorted(dynamics::eigenvalues(models::servo_matrix<PositionGyroPlatform>(p)));
-    EXPECT_EQ(models::servo_stability<PositionGyroPlatform>(p).neutral, 1);
+    const Roots full = sorted(dynamics::eigenvalues(models::servo_matrix<TwoPositionGyroPlatform>(p)));
+    EXPECT_EQ(models::servo_stability<TwoPositionGyroPlatform>(p).neutral, 1);
     const Roots exact = reduced_position(J, k, d, sg, ex, 0.5);
     const Roots derived = reduced_position(J, k, d, 1.0, e, 0.5);
     const Roots printed = reduced_position(J, k, d, 1.0, e, 1.0);
@@ -563,12 +563,12 @@ TEST(InertialPlatformCoupling, GainsStableAloneButUnstableCoupledAreRefused) {
   }
   // Position gyros: the dampers' circulatory coupling k d/H destabilizes unless sqrt(kJ) ≲ H — the scene's
   // H = 2 is stable, H = 0.05 (the integrating gyros' momentum) is not, for every k tried.
-  PositionGyroPlatformParams q = position_scene();
-  EXPECT_TRUE(models::servo_stability<PositionGyroPlatform>(q).stable);
-  const models::ServoStability qs = models::servo_stability<PositionGyroPlatform>(q);
+  TwoPositionGyroPlatformParams q = position_scene();
+  EXPECT_TRUE(models::servo_stability<TwoPositionGyroPlatform>(q).stable);
+  const models::ServoStability qs = models::servo_stability<TwoPositionGyroPlatform>(q);
   EXPECT_EQ(qs.neutral, 1);  // the two rotors' relative azimuth
   for (PlatformAxisParams& a : q.axis) a.H = 0.05, a.d = 1e-3;
-  EXPECT_FALSE(models::servo_stability<PositionGyroPlatform>(q).stable);
+  EXPECT_FALSE(models::servo_stability<TwoPositionGyroPlatform>(q).stable);
 }
 
 std::string scene_text(const std::string& platform, double k) {

@@ -122,7 +122,7 @@ class InertialPlatformRun {
     if constexpr (!std::is_same_v<Model, models::SingleAxisPlatform>) {
       // The platform's servo roots with every cross term, the slowest decay beside the stability margin.
       const models::ServoStability st = models::servo_stability<Model>(plant_.model().params());
-      constexpr bool kPosition = std::is_same_v<Model, models::PositionGyroPlatform>;
+      constexpr bool kPosition = std::is_same_v<Model, models::TwoPositionGyroPlatform>;
       f["gyros"] = kPosition ? "two_position" : "three_integrating";
       if constexpr (!kPosition)
         f["coupling"] = plant_.model().params().coupling == models::PlatformCoupling::kFull ? "full" : "decoupled";
@@ -147,7 +147,7 @@ class InertialPlatformRun {
                        {"position_error_max_book_16_47_m", 2.0 * R * std::fabs(e0)},
                        {"servo_offset_book_16_2_rad", servo_offset_book(a)},
                        {"gyro_angle_end_rad", plant_.gyro_angle_rad(i)},
-                       {"servo_gain_limit_16_5", std::is_same_v<Model, models::PositionGyroPlatform>
+                       {"servo_gain_limit_16_5", std::is_same_v<Model, models::TwoPositionGyroPlatform>
                                                      ? nlohmann::json(nullptr)  // no upper bound (16.9)
                                                      : nlohmann::json(a.k_max())},
                        {"drift_position_rate_book_16_50_m_s", -a.drift * R},
@@ -173,7 +173,7 @@ class InertialPlatformRun {
   // The channel pick-off's offset under the constant disturbance: (16.2)/(16.15) β0 = M^S/k; position gyros
   // (16.22) α^Y = −M^S_1/k, β^X = −M^S_2/k.
   static double servo_offset_book(const models::PlatformAxisParams& a) {
-    return (std::is_same_v<Model, models::PositionGyroPlatform> ? -1.0 : 1.0) * a.disturbance / a.k;
+    return (std::is_same_v<Model, models::TwoPositionGyroPlatform> ? -1.0 : 1.0) * a.disturbance / a.k;
   }
 
   static constexpr std::int64_t kHistory = kMaxLatencyTicks + 2;
@@ -205,7 +205,7 @@ struct InertialPlatformTraits {
   static std::unique_ptr<PlantPort> make_plant(const Scene& s, const PlantOptions&) {
     if (s.plant.axes == 1) return make_plant_port<InertialPlatformRun<models::SingleAxisPlatform>>(s);
     if (s.plant.gyros == plants::PlatformGyros::kTwoPosition)
-      return make_plant_port<InertialPlatformRun<models::PositionGyroPlatform>>(s);
+      return make_plant_port<InertialPlatformRun<models::TwoPositionGyroPlatform>>(s);
     return make_plant_port<InertialPlatformRun<models::ThreeAxisPlatform>>(s);
   }
 };

@@ -42,9 +42,9 @@ bool integrating_gyros(const S& s) {
 template <class F>
 auto with_three_axis_model(const S& s, F&& f) {
   if (position_gyros(s)) {
-    models::PositionGyroPlatformParams p;
+    models::TwoPositionGyroPlatformParams p;
     for (int i = 0; i < 3; ++i) p.axis[i] = s.plant.axis[i].params;
-    return f(models::PositionGyroPlatform(p), p);
+    return f(models::TwoPositionGyroPlatform(p), p);
   }
   models::ThreeAxisPlatformParams p;
   for (int i = 0; i < 3; ++i) p.axis[i] = s.plant.axis[i].params;
