@@ -2,19 +2,25 @@
 // platform of Fig. 16.9 on the book's great circle over a non-rotating Earth (track trihedron T), or a
 // three-axis local-level platform in the azimuth-free trihedron F of a vehicle over the rotating Earth
 // (sim/models/inertial_platform.hpp; motion sim/motion/earth_vehicle.hpp fed per tick by
-// vehicle_frame_feed.hpp, the raw specific force: the platform levels to the geocentric vertical), each axis
-// held by its rate-integrating gyro and analog servo, integrated by RK4 with the scene's sub-steps; and its
+// vehicle_frame_feed.hpp, the raw specific force: the platform levels to the geocentric vertical), held by
+// three rate-integrating gyros with their cross-coupling (16.11)-(16.13) (or decoupled, the large-H/d limit)
+// or by two position gyros (16.19)-(16.21) (sim/models/inertial_platform_position_gyros.hpp) and the analog
+// servos, integrated by RK4 with the scene's sub-steps; and its
 // sensors: integrating (Δv) accelerometers, read as the apparent tilt θ = specific force / g0 averaged over
 // the previous tick (the trapezoid between the tick's ends: exact for the frame's linear motion within the
 // tick, O(T²) in the platform's own; white noise), and the gyro pick-offs.
 // Start: the tilt e(0) of the scene, the platform turning with the level frame, each gyro at its servo
-// offset β0 = M^S/k (16.2).
+// offset (16.2) — for three axes the gyro angles at which the platform rests while it turns with the level
+// frame under the torquers that hold it there (with the coupling's offsets, (16.15), (16.22)).
 //
 // State: single axis [e (rad), ω_P (rad/s), β (rad), β' (rad/s)]; three axes [e1..3 (rad), ω_P1..3 (rad/s),
 // β1..3 (rad), β'1..3 (rad/s)]. Inputs (ActuatorFrame): gimbal_torque_Nm[kAxis1, kAxis2] = the level
 // channels' gyro torquer commands M^K [N m] (three axes: the azimuth gyro's is 0 — F has no vertical rate).
 // Outputs (SensorFrame): carrier_angle_rad[kRoll] (, [kPitch] for three axes) = the channels' apparent
-// tilts θ [rad]; gimbal_angle_rad[i], gimbal_rate_rad_s[i] = gyro output angle β and rate of channel i.
+// tilts θ [rad]; gimbal_angle_rad[i], gimbal_rate_rad_s[i] = the pick-off angle and rate that stabilize
+// channel i (integrating gyros: β_i; position gyros: α^Y for channel 1, β^X for channel 2).
+// Torquers of the position gyros: channel 1 torques gyro Y's inner axis, channel 2 gyro X's outer axis, wired so
+// that M = −H ω_cmd turns the platform at ω_cmd as with the integrating gyros (the firmware is the same).
 // Random streams of the scene seed (seeded_rng.hpp): 1, 2 the accelerometers of channels 1, 2.
 // Allocation-free after construction. Docs: docs/models/inertial-platform.md. Oracle:
 // tests/oracle/inertial_platform_test.cpp (the models); this plant in the shipped scenes through
@@ -30,6 +36,7 @@
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/inertial_platform.hpp"
+#include "sim/models/inertial_platform_position_gyros.hpp"
 #include "sim/motion/vehicle_motion.hpp"
 #include "sim/plants/instrument_frames.hpp"
 #include "sim/plants/plant_timing.hpp"
@@ -45,8 +52,13 @@ struct PlatformAxisSetup {
   double tilt0{0.0};  // initial tilt e(0) [rad]
 };
 
+// Which gyros hold the three-axis platform: three rate-integrating (Fig. 16.4) or two position gyros (Fig. 16.5).
+enum class PlatformGyros : int { kThreeIntegrating = 0, kTwoPosition = 1 };
+
 struct InertialPlatformPlantParams {
   int axes{3};  // 1: single-axis (Fig. 16.9), 3: three-axis
+  PlatformGyros gyros{PlatformGyros::kThreeIntegrating};
+  models::PlatformCoupling coupling{models::PlatformCoupling::kFull};  // three integrating gyros
   motion::VehicleMotionParams vehicle{.start = {.latitude = std::numbers::pi / 180.0 * 45.0}};
   PlatformAxisSetup axis[3]{};      // axes 1, 2 (level), 3 (up); the single axis uses axis 1
   double gravity_gradient{0.0};     // single axis: (3g/R)(B_p − C_p) of (16.30) [N m/rad]
@@ -120,11 +132,62 @@ struct PlatformAxes<models::ThreeAxisPlatform> {
     const dynamics::Vec3 e(p.axis[0].tilt0, p.axis[1].tilt0, p.axis[2].tilt0);
     x.segment<3>(M::kTilt) = e;
     x.segment<3>(M::kPlatformRate) = w.Omega + w.Omega.cross(e);
-    for (int i = 0; i < 3; ++i) x[M::kGyroAngle + i] = p.axis[i].params.disturbance / p.axis[i].params.k;
+    const std::array<double, 3> h = holding(p, x.segment<3>(M::kPlatformRate));
+    const double m[3] = {h[0], h[1], h[2]};
+    x.segment<3>(M::kGyroAngle) = make(p).resting_gyro_angles(x.segment<3>(M::kPlatformRate), m);
     return x;
   }
   static M make(const InertialPlatformPlantParams& p) {
     models::ThreeAxisPlatformParams q;
+    for (int i = 0; i < 3; ++i) q.axis[i] = p.axis[i].params;
+    q.coupling = p.coupling;
+    return M(q);
+  }
+  // The level channels' torquers that turn the platform at ω: M = −H (ω − ε); the azimuth gyro's is 0.
+  static std::array<double, 3> holding(const InertialPlatformPlantParams& p, const dynamics::Vec3& omega) {
+    std::array<double, 3> m{0.0, 0.0, 0.0};
+    for (int i = 0; i < 2; ++i) m[i] = -p.axis[i].params.H * (omega[i] - p.axis[i].params.drift);
+    return m;
+  }
+};
+
+template <>
+struct PlatformAxes<models::TwoPositionGyroPlatform> {
+  using M = models::TwoPositionGyroPlatform;
+  static constexpr int kChannels = 2;
+  static constexpr std::array<const char*, M::kStateSize> kStateNames{
+      "tilt1_rad",          "tilt2_rad",          "tilt3_rad",          "platform_rate1_rad_s",
+      "platform_rate2_rad_s", "platform_rate3_rad_s", "alpha_x_rad",        "beta_x_rad",
+      "alpha_y_rad",        "beta_y_rad",         "alpha_x_rate_rad_s", "beta_x_rate_rad_s",
+      "alpha_y_rate_rad_s", "beta_y_rate_rad_s"};
+  static models::FrameSample frame(const motion::EarthVehicleSample& m) {
+    return frame_as_is(m.azimuth_free);
+  }
+  static void set_torquers(M& p, const msg::ActuatorFrame& cmd) {
+    p.inputs.torquer[0] = cmd.gimbal_torque_Nm[msg::kAxis1];
+    p.inputs.torquer[1] = cmd.gimbal_torque_Nm[msg::kAxis2];
+    p.inputs.torquer[2] = 0.0;
+  }
+  static double tilt(const M::State& x, int i) { return x[M::kTilt + i]; }
+  static double frame_rate(const models::FrameSample& w, int i) { return w.Omega[i]; }
+  static void apparent(const M& p, double t, const M::State& x, double (&theta)[2]) {
+    p.apparent_tilts(t, x, theta[0], theta[1]);
+  }
+  // Channel 1 is stabilized on α^Y, channel 2 on β^X (16.21).
+  static double gyro_angle(const M::State& x, int i) { return x[i == 0 ? M::kAlphaY : M::kBetaX]; }
+  static double gyro_rate(const M::State& x, int i) { return x[M::kGimbalRate + (i == 0 ? 2 : 1)]; }
+  static M::State initial(const InertialPlatformPlantParams& p, const models::FrameSample& w) {
+    M::State x = M::State::Zero();
+    const dynamics::Vec3 e(p.axis[0].tilt0, p.axis[1].tilt0, p.axis[2].tilt0);
+    x.segment<3>(M::kTilt) = e;
+    x.segment<3>(M::kPlatformRate) = w.Omega + w.Omega.cross(e);
+    const std::array<double, 3> h = PlatformAxes<models::ThreeAxisPlatform>::holding(p, x.segment<3>(3));
+    const double m[3] = {h[0], h[1], h[2]};
+    x.segment<4>(M::kAlphaX) = make(p).resting_gimbal_angles(m);
+    return x;
+  }
+  static M make(const InertialPlatformPlantParams& p) {
+    models::TwoPositionGyroPlatformParams q;
     for (int i = 0; i < 3; ++i) q.axis[i] = p.axis[i].params;
     return M(q);
   }

@@ -55,6 +55,7 @@ SCENES = {
     "gyrocompass-ship-crossing-latitudes": "gyrocompass",
     "inertial-platform-schuler": "inertial_platform",
     "inertial-platform-single-axis": "inertial_platform",
+    "inertial-platform-two-position-gyros": "inertial_platform",
     "schuler-gyro-pendulum": "gyro_pendulum",
     "gimbal-error-heading-gyro-turn": "gimbal_error",
     "u-gyro-rate-table": "u_gyro",

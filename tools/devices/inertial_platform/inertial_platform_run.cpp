@@ -12,11 +12,13 @@
 #include <memory>
 #include <numbers>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/extrema_meter.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/models/inertial_platform_stability.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/inertial_platform/inertial_platform_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
@@ -117,6 +119,16 @@ class InertialPlatformRun {
     const double g = s_.plant.vehicle.earth.gravity, R = s_.plant.vehicle.earth.radius;
     const double RL = s_.controller.law.radius, HL = s_.controller.law.H, wS = std::sqrt(g / R);
     nlohmann::json f{{"ticks", ticks_}, {"axes", s_.plant.axes}, {"schuler_period_s", 2.0 * kPi / wS}};
+    if constexpr (!std::is_same_v<Model, models::SingleAxisPlatform>) {
+      // The platform's servo roots with every cross term, the slowest decay beside the stability margin.
+      const models::ServoStability st = models::servo_stability<Model>(plant_.model().params());
+      constexpr bool kPosition = std::is_same_v<Model, models::TwoPositionGyroPlatform>;
+      f["gyros"] = kPosition ? "two_position" : "three_integrating";
+      if constexpr (!kPosition)
+        f["coupling"] = plant_.model().params().coupling == models::PlatformCoupling::kFull ? "full" : "decoupled";
+      f["servo_root_worst_re_per_s"] = st.worst.real();
+      f["servo_root_worst_im_rad_s"] = std::fabs(st.worst.imag());
+    }
     nlohmann::json ch = nlohmann::json::array();
     for (int i = 0; i < kChannels; ++i) {
       const ChannelStats& c = stats_[static_cast<std::size_t>(i)];
@@ -133,9 +145,11 @@ class InertialPlatformRun {
                        {"velocity_error_amplitude_book_16_47_m_s", std::fabs(e0) * std::sqrt(g * R)},
                        {"position_error_max_m", c.position_error_max},
                        {"position_error_max_book_16_47_m", 2.0 * R * std::fabs(e0)},
-                       {"servo_offset_book_16_2_rad", a.disturbance / a.k},
+                       {"servo_offset_book_16_2_rad", servo_offset_book(a)},
                        {"gyro_angle_end_rad", plant_.gyro_angle_rad(i)},
-                       {"servo_gain_limit_16_5", a.k_max()},
+                       {"servo_gain_limit_16_5", std::is_same_v<Model, models::TwoPositionGyroPlatform>
+                                                     ? nlohmann::json(nullptr)  // no upper bound (16.9)
+                                                     : nlohmann::json(a.k_max())},
                        {"drift_position_rate_book_16_50_m_s", -a.drift * R},
                        {"extrema", c.extrema.count()}};
       j["period_measured_s"] =
@@ -156,6 +170,12 @@ class InertialPlatformRun {
   }
 
  private:
+  // The channel pick-off's offset under the constant disturbance: (16.2)/(16.15) β0 = M^S/k; position gyros
+  // (16.22) α^Y = −M^S_1/k, β^X = −M^S_2/k.
+  static double servo_offset_book(const models::PlatformAxisParams& a) {
+    return (std::is_same_v<Model, models::TwoPositionGyroPlatform> ? -1.0 : 1.0) * a.disturbance / a.k;
+  }
+
   static constexpr std::int64_t kHistory = kMaxLatencyTicks + 2;
   // The level frame's rate about channel i at the start of tick k (k ≥ 0, within the last kHistory ticks).
   void remember_rates(std::int64_t k) {
@@ -184,6 +204,8 @@ struct InertialPlatformTraits {
   static nlohmann::json limits(const Scene& s) {     return {{"torquer_limit_Nm", s.controller.law.torque_limit_Nm}}; }
   static std::unique_ptr<PlantPort> make_plant(const Scene& s, const PlantOptions&) {
     if (s.plant.axes == 1) return make_plant_port<InertialPlatformRun<models::SingleAxisPlatform>>(s);
+    if (s.plant.gyros == plants::PlatformGyros::kTwoPosition)
+      return make_plant_port<InertialPlatformRun<models::TwoPositionGyroPlatform>>(s);
     return make_plant_port<InertialPlatformRun<models::ThreeAxisPlatform>>(s);
   }
 };

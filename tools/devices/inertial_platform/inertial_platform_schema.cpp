@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/dynamics/step_validation.hpp"
+#include "sim/models/inertial_platform_stability.hpp"
 #include "tools/devices/inertial_platform/inertial_platform_scene.hpp"
 #include "tools/devices/vehicle_instruments/vehicle_motion_schema.hpp"
 #include "tools/run/controller_report.hpp"
@@ -29,11 +31,48 @@ bool single_axis(const S& s) {
 bool three_axes(const S& s) {
   return s.plant.axes != 1;
 }
+bool position_gyros(const S& s) {
+  return three_axes(s) && s.plant.gyros == plants::PlatformGyros::kTwoPosition;
+}
+bool integrating_gyros(const S& s) {
+  return three_axes(s) && s.plant.gyros == plants::PlatformGyros::kThreeIntegrating;
+}
+
+// The three-axis platform of the scene, whichever gyros hold it: f(model) with its parameters.
+template <class F>
+auto with_three_axis_model(const S& s, F&& f) {
+  if (position_gyros(s)) {
+    models::TwoPositionGyroPlatformParams p;
+    for (int i = 0; i < 3; ++i) p.axis[i] = s.plant.axis[i].params;
+    return f(models::TwoPositionGyroPlatform(p), p);
+  }
+  models::ThreeAxisPlatformParams p;
+  for (int i = 0; i < 3; ++i) p.axis[i] = s.plant.axis[i].params;
+  p.coupling = s.plant.coupling;
+  return f(models::ThreeAxisPlatform(p), p);
+}
 
 // Read first: the Earth's rate and the axes read depend on it.
 constexpr schema::Field<S> kPlatformFields[] = {
     F::integer("platform", "axes", "", 1, 3, "1: single-axis (Fig. 16.9), 3: three-axis",
                GS_INTEGER(plant.axes)),
+};
+
+constexpr std::string_view kGyros[] = {"three_integrating", "two_position"};
+constexpr std::string_view kCouplings[] = {"full", "decoupled"};
+
+// Read after `axes`.
+constexpr schema::Field<S> kVariantFields[] = {
+    F::choice("platform", "gyros", kGyros,
+              "three_integrating: three rate-integrating gyros (Fig. 16.4, (16.11)-(16.13)); two_position: two "
+              "two-degree-of-freedom gyros, X spinning along axis 1, Y along axis 2 (Fig. 16.5, (16.19)-(16.21))",
+              GS_CHOICE(plant.gyros))
+        .when(three_axes, "axes = 3"),
+    F::choice("platform", "coupling", kCouplings,
+              "full: the cross terms of (16.11)-(16.12); decoupled: three independent single-axis servos (the "
+              "large-H/d limit, the cross terms are ≈ 2d/H: 4 % at H/d = 50)",
+              GS_CHOICE(plant.coupling))
+        .when(integrating_gyros, "gyros = three_integrating"),
 };
 
 // The gyro drift is given in deg/h.
@@ -48,7 +87,9 @@ double get_drift(const Axis& a) {
 constexpr schema::Field<Axis> kAxisFields[] = {
     FA::number("axisN", "J", "kg m²", Range::positive(), "platform + gimbal inertia about the axis",
                GS_NUMBER(params.J))
-        .with_note("`[axisN]`: N = 1 (axes = 1) or 1, 2, 3 (axes = 3)"),
+        .with_note("`[axisN]`: N = 1 (axes = 1) or 1, 2, 3 (axes = 3); two position gyros: gyro Y (channel 1) "
+                   "takes H, B (both gimbal axes), d, c of `[axis1]`, gyro X (channel 2) those of `[axis2]`; "
+                   "`[axis3]` gives J, k, the disturbance and the azimuth drift (both rotors) only"),
     FA::number("axisN", "k", "N m/rad", Range::positive(), "stabilization servo gain M = −k β",
                GS_NUMBER(params.k)),
     FA::number("axisN", "H", "N m s", Range::positive(), "the axis gyro's spin momentum",
@@ -93,7 +134,7 @@ constexpr schema::Field<S> kFields[] = {
 };
 
 constexpr const char* kAxisRuleDoc =
-    "each `[axisN]`: usable parameters, and a stable servo: k < d (J c + H²)/(B H) ((16.5) for c = 0)";
+    "each `[axisN]`: usable parameters; axes = 1: a stable servo, k < d (J c + H²)/(B H) ((16.5) for c = 0)";
 constexpr const char* kSingleAxisRuleDoc =
     "axes = 1, the book's non-rotating great circle (16.4.1): `[earth] rotation_rate_rad_s` = 0 (its default "
     "then) and every `[segmentN] turn_rate_deg_s` = 0";
@@ -101,6 +142,25 @@ constexpr const char* kSingleAxisRuleDoc =
 constexpr schema::Rule<S> kRules[] = {
     {"platform", "axes", "`[platform] axes` is 1 or 3",
      [](const S& s) -> std::string { return s.plant.axes == 2 ? "must be 1 or 3" : ""; }},
+    {"axis1", "k",
+     "axes = 3: the platform's servo modes, all three axes together with their cross terms (the roots of "
+     "(16.14): 9th order for integrating gyros, 11th for position gyros, sim/models/inertial_platform_stability.hpp), "
+     "have negative real parts — gains each axis alone would take ((16.5)) can be unstable when coupled",
+     [](const S& s) -> std::string {
+       if (!three_axes(s)) return "";
+       for (const plants::PlatformAxisSetup& a : s.plant.axis)
+         if (a.params.invalid_parameters() != nullptr) return "";  // reported with the axis
+       const models::ServoStability st = with_three_axis_model(s, []<class M, class P>(const M&, const P& p) {
+         return models::servo_stability<M>(p);
+       });
+       if (st.stable) return "";
+       char buf[320];
+       std::snprintf(buf, sizeof buf,
+                     "the platform's servo is unstable with its cross-coupling: root %.4g %+.4gi /s (real part "
+                     "must be < 0); lower the gains k of `[axisN]`, or raise H or d",
+                     st.worst.real(), st.worst.imag());
+       return buf;
+     }},
 };
 
 constexpr schema::Rule<S> kLoopRules[] = {
@@ -126,26 +186,27 @@ constexpr schema::Rule<S> kLoopRules[] = {
              dynamics::Method::kRk4,
              dynamics::fastest_mode(m, 0.0, models::SingleAxisPlatform::State::Zero(), "servo"), h_sub);
        } else {
-         models::ThreeAxisPlatformParams p;
-         for (int i = 0; i < 3; ++i) p.axis[i] = s.plant.axis[i].params;
-         models::ThreeAxisPlatform m(p);
-         step = dynamics::check_step(
-             dynamics::Method::kRk4,
-             dynamics::fastest_mode(m, 0.0, models::ThreeAxisPlatform::State::Zero(), "servo"), h_sub);
+         step = with_three_axis_model(s, [&]<class M, class P>(const M& m, const P&) {
+           return dynamics::check_step(dynamics::Method::kRk4,
+                                       dynamics::fastest_mode(m, 0.0, M::State::Zero(), "servo"), h_sub);
+         });
        }
        return step.ok ? "" : step.message;
      }},
 };
 
+// i < 0: the single axis (as axis1).
 void read_axis(SceneReader& r, int i, Axis& a) {
-  const std::string section = "axis" + std::to_string(i + 1);
+  const std::string section = "axis" + std::to_string(i < 0 ? 1 : i + 1);
   std::array<schema::Field<Axis>, std::size(kAxisFields)> fields;
   for (std::size_t k = 0; k < fields.size(); ++k) {
     fields[k] = kAxisFields[k];
     fields[k].section = section;
   }
   schema::read(r, std::span<const schema::Field<Axis>>(fields), a);
-  if (const char* why = a.params.invalid_reason()) r.fail(section, "k", why);
+  // Three axes: the whole platform's stability is a rule (kRules), the single-axis bound is not the test.
+  const char* why = i < 0 ? a.params.invalid_reason() : a.params.invalid_parameters();
+  if (why != nullptr) r.fail(section, "k", why);
 }
 
 // The single-axis platform is the book's case: a great circle over a non-rotating Earth.
@@ -189,7 +250,9 @@ std::unique_ptr<DeviceScene> read_inertial_platform(SceneReader& r) {
   if (single_axis(*s)) s->plant.vehicle.earth.rotation_rate = 0.0;
   read_vehicle_motion(r, s->plant.vehicle);
   if (single_axis(*s) && r.ok()) check_single_axis_motion(r, *s);
-  for (int i = 0; i < (single_axis(*s) ? 1 : 3); ++i) read_axis(r, i, s->plant.axis[i]);
+  schema::read(r, kVariantFields, *s);
+  if (single_axis(*s)) read_axis(r, -1, s->plant.axis[0]);
+  else for (int i = 0; i < 3; ++i) read_axis(r, i, s->plant.axis[i]);
   schema::read(r, kFields, *s);
   derive(*s);
   schema::check(r, kRules, *s);
@@ -206,6 +269,7 @@ SceneDoc inertial_platform_doc() {
   rules.emplace_back(kSingleAxisRuleDoc);
   for (std::string& rule : schema::document(kLoopRules)) rules.push_back(std::move(rule));
   SceneDocTable table = schema::document(kPlatformFields);
+  for (SceneDocRow& row : schema::document(kVariantFields).rows) table.rows.push_back(std::move(row));
   for (SceneDocRow& row : schema::document(kAxisFields).rows) table.rows.push_back(std::move(row));
   for (SceneDocRow& row : schema::document(kFields).rows) table.rows.push_back(std::move(row));
   for (SceneDocRow& row : table.rows) {
