@@ -13,7 +13,8 @@ namespace gyrostab::tools {
   X(kInertialPlatform)      \
   X(kGyroPendulum)          \
   X(kGimbalError)           \
-  X(kUGyro)
+  X(kUGyro)                 \
+  X(kBauersfeldCompass)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,
