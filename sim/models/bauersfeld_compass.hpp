@@ -193,7 +193,8 @@ class BauersfeldCompass {
 //   tilt_east, tilt_north: a1 displaced from the geocentric down toward east / north,
 //     atan2(a1·G1, −a1·G3), atan2(a1·G2, −a1·G3); tilt: the whole angle between a1 and down;
 //   azimuth: a3 from north toward east, atan2(a3·G1, a3·G2) (the compass error);
-//   roll, pitch, yaw: 3-2-1 angles of the sphere's axes (a3, −a2, a1) against north-east-down (yaw = azimuth).
+//   roll, pitch, yaw: 3-2-1 angles of the sphere's axes (a3, −a2, a1) against north-east-down (yaw =
+//   azimuth).
 struct BauersfeldReading {
   double tilt_east{0.0}, tilt_north{0.0}, tilt{0.0}, azimuth{0.0};
   double roll{0.0}, pitch{0.0}, yaw{0.0};

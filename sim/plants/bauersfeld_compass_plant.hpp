@@ -1,6 +1,6 @@
-// The two-rotor spatial compass of Bauersfeld on a vehicle over the rotating Earth, as a scene runs it (Magnus
-// §13.4, (13.40)-(13.64)): sim/models/bauersfeld_compass.hpp in inertial axes, its support point on the
-// vehicle of sim/motion/earth_vehicle.hpp sampled exactly at every RK4 stage (within the segment of the
+// The two-rotor spatial compass of Bauersfeld on a vehicle over the rotating Earth, as a scene runs it
+// (Magnus §13.4, (13.40)-(13.64)): sim/models/bauersfeld_compass.hpp in inertial axes, its support point on
+// the vehicle of sim/motion/earth_vehicle.hpp sampled exactly at every RK4 stage (within the segment of the
 // step's start: a step ending on a manoeuvre corner sees the left limit), integrated with the scene's
 // sub-steps. Start: (13.64) — on the geocentric vertical with its rate — plus the scene's tilt. The
 // compass has no torquer and no brake: the controller's commands, the safe state's brake included, do not

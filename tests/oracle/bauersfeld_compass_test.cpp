@@ -18,9 +18,9 @@
 // Earth-rate terms are smaller by ω^E/r); on straight legs and at rest the derivatives are powers of v/R or
 // ω^E (< 1e-20 s⁻⁵) and add nothing. The steps of a segment see one segment (corners on steps), so the jumps
 // cost nothing. A rate error δ turns into a Schuler swing of amplitude δ/ω_S, so the tilt's budget is
-// Σ n h⁵ (v/R) r⁴/720 + (Σ n h⁵ (v/R) r⁵/2880)/ω_S over the turns (n steps each, no cancellation assumed), plus
-// rounding: 1e-13 rad (|a1| = 1 random-walks by ε = 1.1e-16 a step, ~1e-14 over 2e4 steps) and 1e-16 rad/s.
-// The azimuth's error is the rate's error across a1 over |a1'| ≥ min |ω_IG horizontal|, and sin δ's is
+// Σ n h⁵ (v/R) r⁴/720 + (Σ n h⁵ (v/R) r⁵/2880)/ω_S over the turns (n steps each, no cancellation assumed),
+// plus rounding: 1e-13 rad (|a1| = 1 random-walks by ε = 1.1e-16 a step, ~1e-14 over 2e4 steps) and 1e-16
+// rad/s. The azimuth's error is the rate's error across a1 over |a1'| ≥ min |ω_IG horizontal|, and sin δ's is
 // H/(2f) times the rate's. Fixed to the Earth the derivatives are powers of ω^E: rounding only.
 #include "sim/models/bauersfeld_compass.hpp"
 
@@ -71,8 +71,8 @@ motion::VehicleMotionParams earth_at(double latitude, double rotation = kW) {
 }
 
 void add(motion::VehicleMotionParams& m, double duration_s, double turn_deg_s, double accel) {
-  m.segments[static_cast<std::size_t>(m.count++)] = {static_cast<std::int64_t>(std::llround(duration_s * 1e9)),
-                                                      turn_deg_s * kDeg, accel};
+  m.segments[static_cast<std::size_t>(m.count++)] = {
+      static_cast<std::int64_t>(std::llround(duration_s * 1e9)), turn_deg_s * kDeg, accel};
 }
 
 // A ship at 50°N: works up to 15 m/s northward, turns east, about to west, to 20 m/s, north, stops (4.3 h).
@@ -118,8 +118,8 @@ struct Observed {
 
 // RK4 at step h from the (13.64) start plus a tilt, for T seconds; obs(Observed) at every step's start.
 template <class Obs>
-void run(const motion::VehicleMotionParams& plan, const models::BauersfeldCompassParams& p, double T, double h,
-         double tilt_east, double tilt_north, Obs obs) {
+void run(const motion::VehicleMotionParams& plan, const models::BauersfeldCompassParams& p, double T,
+         double h, double tilt_east, double tilt_north, Obs obs) {
   const Vehicle v = motion::make_vehicle(plan);
   Model model(p, Support{&v});
   dynamics::Rk4<Model> rk(model);
@@ -163,17 +163,21 @@ struct Errors {
 };
 
 // The tuned closed forms along a run: tilt from the vertical, azimuth against ψ_F (both forms), sin δ.
-Errors tuned_errors(const motion::VehicleMotionParams& plan, const models::BauersfeldCompassParams& p, double T,
-                    double h) {
+Errors tuned_errors(const motion::VehicleMotionParams& plan, const models::BauersfeldCompassParams& p,
+                    double T, double h) {
   Errors e;
   run(plan, p, T, h, 0.0, 0.0, [&](const Observed& o) {
     const Vec3& w = o.v.geographic.w_IZ_Z;
     e.tilt = std::fmax(e.tilt, o.reading.tilt);
-    e.azimuth = std::fmax(e.azimuth, std::fabs(std::remainder(o.reading.azimuth - oracles::bauersfeld_azimuth_book(w), 2 * kPi)));
-    const double psi_f = oracles::bauersfeld_speed_deviation(o.v.v_north, o.v.v_east, o.v.latitude, kR, plan.earth.rotation_rate);
-    e.azimuth_speed_form = std::fmax(e.azimuth_speed_form, std::fabs(std::remainder(o.reading.azimuth - psi_f, 2 * kPi)));
-    const double sd = p.H * std::hypot(o.v.v_north, o.v.v_east + plan.earth.rotation_rate * kR * std::cos(o.v.latitude)) /
-                      (2.0 * p.f * kR);
+    e.azimuth = std::fmax(e.azimuth, std::fabs(std::remainder(
+                                         o.reading.azimuth - oracles::bauersfeld_azimuth_book(w), 2 * kPi)));
+    const double psi_f = oracles::bauersfeld_speed_deviation(o.v.v_north, o.v.v_east, o.v.latitude, kR,
+                                                             plan.earth.rotation_rate);
+    e.azimuth_speed_form =
+        std::fmax(e.azimuth_speed_form, std::fabs(std::remainder(o.reading.azimuth - psi_f, 2 * kPi)));
+    const double sd =
+        p.H * std::hypot(o.v.v_north, o.v.v_east + plan.earth.rotation_rate * kR * std::cos(o.v.latitude)) /
+        (2.0 * p.f * kR);
     e.sin_delta = std::fmax(e.sin_delta, std::fabs(o.sin_delta - sd));
     e.speed_max = std::fmax(e.speed_max, o.v.speed);
     e.rate_min = std::fmin(e.rate_min, std::hypot(w.x(), w.y()));
@@ -184,12 +188,14 @@ Errors tuned_errors(const motion::VehicleMotionParams& plan, const models::Bauer
 // --- (a) motion independence ------------------------------------------------------------------------------
 
 TEST(BauersfeldTuned, StaysOnTheVerticalThroughAnyManoeuvre) {
-  for (const auto& [name, plan, T] : {std::tuple{"ship", ship(), 15000.0}, std::tuple{"aircraft", aircraft(), 3600.0}}) {
+  for (const auto& [name, plan, T] :
+       {std::tuple{"ship", ship(), 15000.0}, std::tuple{"aircraft", aircraft(), 3600.0}}) {
     const Errors e1 = tuned_errors(plan, compass(), T, 1.0);
     const Errors e2 = tuned_errors(plan, compass(), T, 0.5);
     const Budget b1 = step_budget(plan, 1.0), b2 = step_budget(plan, 0.5);
-    std::printf("  %-8s (v up to %.0f m/s): tilt max %.2e rad (budget %.2e) at h = 1 s, %.2e (%.2e) at h = 0.5 s\n",
-                name, e1.speed_max, e1.tilt, b1.tilt, e2.tilt, b2.tilt);
+    std::printf(
+        "  %-8s (v up to %.0f m/s): tilt max %.2e rad (budget %.2e) at h = 1 s, %.2e (%.2e) at h = 0.5 s\n",
+        name, e1.speed_max, e1.tilt, b1.tilt, e2.tilt, b2.tilt);
     EXPECT_LT(e1.tilt, b1.tilt) << name;
     EXPECT_LT(e2.tilt, b2.tilt) << name;
   }
@@ -198,7 +204,8 @@ TEST(BauersfeldTuned, StaysOnTheVerticalThroughAnyManoeuvre) {
 TEST(BauersfeldTuned, MistunedByThreePercentLeavesTheVertical) {
   for (const double ratio : {0.97, 1.03}) {
     const Errors e = tuned_errors(ship(), compass(ratio), 15000.0, 1.0);
-    std::printf("  tuning ratio %.2f: tilt max %.3e rad, azimuth off ψ_F by %.3e rad\n", ratio, e.tilt, e.azimuth);
+    std::printf("  tuning ratio %.2f: tilt max %.3e rad, azimuth off ψ_F by %.3e rad\n", ratio, e.tilt,
+                e.azimuth);
     // At least 3 % of the steady offset κ ω^E² R sinφ cosφ / g (1.7e-3 rad at 50°) at rest alone: 5e-5 rad.
     EXPECT_GT(e.tilt, 1e4 * 1e-9);
     EXPECT_GT(e.azimuth, 1e-6);
@@ -219,9 +226,11 @@ TEST(BauersfeldTuned, MistunedSwingsAboutItsPredictedOffset) {
     const double offset = kappa * kRM * kW * kW * std::sin(phi) * std::cos(phi) / kG;
     double peak = 0.0;
     run(earth_at(phi), p, 0.5 * oracles::bauersfeld_period(kRM, kG) * 1.2, 1.0, 0.0, 0.0,
-        [&](const Observed& o) { peak = std::fabs(o.reading.tilt_north) > std::fabs(peak) ? o.reading.tilt_north : peak; });
-    std::printf("  ratio %.2f: κ = %+.4f, offset ε_N = %+.4e rad, north tilt peak %+.4e = %.4f × 2 ε_N\n", ratio,
-                kappa, offset, peak, peak / (2 * offset));
+        [&](const Observed& o) {
+          peak = std::fabs(o.reading.tilt_north) > std::fabs(peak) ? o.reading.tilt_north : peak;
+        });
+    std::printf("  ratio %.2f: κ = %+.4f, offset ε_N = %+.4e rad, north tilt peak %+.4e = %.4f × 2 ε_N\n",
+                ratio, kappa, offset, peak, peak / (2 * offset));
     EXPECT_NEAR(peak / (2.0 * offset), 1.0, 0.03);
   }
 }
@@ -264,8 +273,8 @@ TEST(BauersfeldPerturbed, EachTiltComponentSwingsWithTheSchulerPeriod) {
   {
     // A non-rotating Earth: the book's inertial derivation holds as it stands, at any latitude.
     const Periods p = swing_periods(earth_at(50.0 * kDeg, 0.0), 1e-4, 8.0 * T_book);
-    std::printf("  non-rotating, 50°: T east %.4f s, north %.4f s, book %.4f s (%.2f min)\n", p.east, p.north, T_book,
-                T_book / 60.0);
+    std::printf("  non-rotating, 50°: T east %.4f s, north %.4f s, book %.4f s (%.2f min)\n", p.east, p.north,
+                T_book, T_book / 60.0);
     ASSERT_GE(p.crossings_east, 7);
     ASSERT_GE(p.crossings_north, 7);
     EXPECT_NEAR(p.east / T_book, 1.0, 1e-6);
@@ -276,8 +285,8 @@ TEST(BauersfeldPerturbed, EachTiltComponentSwingsWithTheSchulerPeriod) {
     // lengthened by the Earth's rotation to 2π/sqrt(g/|R^M| − ω^E²) — 0.17 % — which (13.62) leaves out.
     const double T_east = oracles::bauersfeld_equator_east_period(kRM, kG, kW);
     const Periods p = swing_periods(earth_at(0.0), 1e-4, 8.0 * T_book);
-    std::printf("  rotating, Equator: T east %.4f s (closed form %.4f s), north %.4f s (book %.4f s)\n", p.east,
-                T_east, p.north, T_book);
+    std::printf("  rotating, Equator: T east %.4f s (closed form %.4f s), north %.4f s (book %.4f s)\n",
+                p.east, T_east, p.north, T_book);
     ASSERT_GE(p.crossings_east, 7);
     ASSERT_GE(p.crossings_north, 7);
     EXPECT_NEAR(p.north / T_book, 1.0, 1e-6);
@@ -304,10 +313,13 @@ TEST(BauersfeldFixed, DownWestNorthAndTheSwingOfTheEarthRate) {
       north = std::fmax(north, angle(a3, q * Vec3(0, 1, 0)));
       sd = std::fmax(sd, std::fabs(o.sin_delta - sd_book));
     });
-    std::printf("  φ = %+5.1f°: a1 from down %.1e, a2 from west %.1e, a3 from north %.1e rad; δ = %.4f° "
-                "(sin δ off H ω^E cosφ/(2f) by %.1e)\n", lat, down, west, north, std::asin(sd_book) / kDeg, sd);
+    std::printf(
+        "  φ = %+5.1f°: a1 from down %.1e, a2 from west %.1e, a3 from north %.1e rad; δ = %.4f° "
+        "(sin δ off H ω^E cosφ/(2f) by %.1e)\n",
+        lat, down, west, north, std::asin(sd_book) / kDeg, sd);
     // Rounding only (header): 1e-13 rad on a1, and on a2, a3 the rate's rounding over |a1'| = ω^E cosφ ≥
-    // 2.5e-5 rad/s (φ ≤ 70°) — 1e-16 / 2.5e-5 = 4e-12; tolerance 1e-11 rad, and 1e-12 on sin δ (H/(2f) 1e-16).
+    // 2.5e-5 rad/s (φ ≤ 70°) — 1e-16 / 2.5e-5 = 4e-12; tolerance 1e-11 rad, and 1e-12 on sin δ (H/(2f)
+    // 1e-16).
     EXPECT_LT(down, 1e-11);
     EXPECT_LT(west, 1e-11);
     EXPECT_LT(north, 1e-11);
@@ -318,17 +330,19 @@ TEST(BauersfeldFixed, DownWestNorthAndTheSwingOfTheEarthRate) {
 // --- (d) moving: the speed deviation -----------------------------------------------------------------------
 
 TEST(BauersfeldMoving, AzimuthIsTheSpeedDeviationAndDeltaFollowsTheVerticalsRate) {
-  for (const auto& [name, plan, T] : {std::tuple{"ship", ship(), 15000.0}, std::tuple{"aircraft", aircraft(), 3600.0}}) {
+  for (const auto& [name, plan, T] :
+       {std::tuple{"ship", ship(), 15000.0}, std::tuple{"aircraft", aircraft(), 3600.0}}) {
     const models::BauersfeldCompassParams p = compass();
     const Errors e = tuned_errors(plan, p, T, 1.0);
     const Errors e2 = tuned_errors(plan, p, T, 0.5);
     const Budget b = step_budget(plan, 1.0);
     const double az_tol = (b.rate + std::sqrt(kG / kRM) * b.tilt) / e.rate_min;
     const double sd_tol = p.H * b.rate / (2.0 * p.f);
-    std::printf("  %-8s: azimuth − atan2(ω1, ω2) %.2e (budget %.2e; h = 0.5 s: %.2e), − atan2(−v_N, v_E + ω^E R "
-                "cosφ) %.2e rad; sin δ %.2e (budget %.2e; h = 0.5 s: %.2e); |ω_IG,h| down to %.2e rad/s\n",
-                name, e.azimuth, az_tol, e2.azimuth, e.azimuth_speed_form, e.sin_delta, sd_tol, e2.sin_delta,
-                e.rate_min);
+    std::printf(
+        "  %-8s: azimuth − atan2(ω1, ω2) %.2e (budget %.2e; h = 0.5 s: %.2e), − atan2(−v_N, v_E + ω^E R "
+        "cosφ) %.2e rad; sin δ %.2e (budget %.2e; h = 0.5 s: %.2e); |ω_IG,h| down to %.2e rad/s\n",
+        name, e.azimuth, az_tol, e2.azimuth, e.azimuth_speed_form, e.sin_delta, sd_tol, e2.sin_delta,
+        e.rate_min);
     EXPECT_LT(e.azimuth, az_tol) << name;
     EXPECT_LT(e.azimuth_speed_form, az_tol) << name;
     EXPECT_LT(e.sin_delta, sd_tol) << name;
@@ -353,7 +367,8 @@ TEST(BauersfeldMoving, AzimuthIsTheSpeedDeviationAndDeltaFollowsTheVerticalsRate
 
 std::string scene(const std::string& compass_keys) {
   return "[scene]\nname = \"t\"\ndevice = \"bauersfeld_compass\"\nduration_s = 100.0\n"
-         "[loop]\ntick_us = 1000000\n[vehicle]\nlatitude_deg = 50.0\n[compass]\n" + compass_keys;
+         "[loop]\ntick_us = 1000000\n[vehicle]\nlatitude_deg = 50.0\n[compass]\n" +
+         compass_keys;
 }
 
 bool accepted(const std::string& text, std::string& first_error) {

@@ -54,6 +54,9 @@ SCENES = {
     "schuler-gyro-pendulum": "gyro_pendulum",
     "gimbal-error-heading-gyro-turn": "gimbal_error",
     "u-gyro-rate-table": "u_gyro",
+    "bauersfeld-compass-ship": "bauersfeld_compass",
+    "bauersfeld-compass-mistuned": "bauersfeld_compass",
+    "bauersfeld-compass-tilt": "bauersfeld_compass",
 }
 
 failures = []

@@ -12,7 +12,8 @@ extern const DeviceDescriptor kBauersfeldCompass{
         "two rotors of momentum H in cases swinging by ±δ about its axis a1, held by springs M^F = f sin 2δ. "
         "Its axis obeys (13.57) a1 × [(H²/f) a1'' + m s (R^M'' + g R^M/|R^M|)] = 0 (R^M'' the centre of "
         "mass's acceleration, kept exactly), integrated in inertial axes with the support point on a vehicle "
-        "over the rotating Earth sampled exactly at every RK4 stage; the azimuth follows a1' (a2 = a1'/|a1'|, "
+        "over the rotating Earth sampled exactly at every RK4 stage; the azimuth follows a1' (a2 = "
+        "a1'/|a1'|, "
         "sin δ = H |a1'|/(2 f)). Tuned (13.60), H² = f m s |R^M|, and started per (13.64), a1 stays on the "
         "geocentric vertical for any manoeuvre and a3 points north but for the speed deviation; perturbed, "
         "the tilt swings with 84.4 min (13.63). The spring is given or set by the tuning (or a mistuning "
@@ -23,7 +24,8 @@ extern const DeviceDescriptor kBauersfeldCompass{
         "`sim/scenes/bauersfeld-compass-tilt.toml` (an initial tilt on the Equator: the 84.4-min swing). "
         "Integrator: `rk4` (the only one).",
     .figures =
-        "Figures: `tuning_ratio` = H²/(f m s |R^M|), `f_Nm` beside `f_tuned_Nm` (13.60), `radius_M_m` = R − s, "
+        "Figures: `tuning_ratio` = H²/(f m s |R^M|), `f_Nm` beside `f_tuned_Nm` (13.60), `radius_M_m` = R − "
+        "s, "
         "`effective_inertia_kg_m2` = H²/f + m s², `schuler_period_book_min` (13.63), `step_s`, `ticks`; the "
         "tilt of a1 from the geocentric vertical: `tilt_max_rad` (at `tilt_max_time_s`), `tilt_end_rad`; the "
         "azimuth error of a3: `azimuth_error_max_abs_rad` and `azimuth_deviation_from_book_max_rad` against "

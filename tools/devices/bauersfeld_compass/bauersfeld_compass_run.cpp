@@ -30,20 +30,23 @@ using Controller = firmware::BasicFreeInstrumentController<firmware::posix::Mono
 
 const std::vector<std::string>& columns() {
   static const std::vector<std::string> c{
-      "tilt_east_rad", "tilt_north_rad", "tilt_rad",  "azimuth_error_rad", "azimuth_book_rad", "delta_rad",
-      "delta_book_rad", "speed_m_s",     "heading_deg", "latitude_deg",    "status_bits"};
+      "tilt_east_rad",  "tilt_north_rad", "tilt_rad",    "azimuth_error_rad", "azimuth_book_rad", "delta_rad",
+      "delta_book_rad", "speed_m_s",      "heading_deg", "latitude_deg",      "status_bits"};
   return c;
 }
 
 // An angle difference in (−π, π].
-double angle_diff(double a, double b) { return std::remainder(a - b, 2.0 * std::numbers::pi); }
+double angle_diff(double a, double b) {
+  return std::remainder(a - b, 2.0 * std::numbers::pi);
+}
 
 class BauersfeldCompassRun {
  public:
   explicit BauersfeldCompassRun(const BauersfeldCompassScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
-        window_(s.loop.ticks() / 2, std::max<std::int64_t>(1, static_cast<std::int64_t>(600.0 / s.loop.tick_s()))),
+        window_(s.loop.ticks() / 2,
+                std::max<std::int64_t>(1, static_cast<std::int64_t>(600.0 / s.loop.tick_s()))),
         east_(s.period_threshold),
         north_(s.period_threshold) {
     measure(0);

@@ -39,16 +39,20 @@ constexpr schema::Field<S> kFields[] = {
     F::number("compass", "s_m", "m", Range::open_closed(0.0, 1.0),
               "centre of mass below the support point, along a1 (13.40)", GS_NUMBER(plant.compass.s))
         .req(),
-    F::number("compass", "tuning_ratio", "", Range::closed(0.5, 2.0),
-              "sets f for this H²/(f m s |R^M|) when f_Nm is absent (1: tuned (13.60))", GS_NUMBER(tuning_ratio)),
+    F::number(
+        "compass", "tuning_ratio", "", Range::closed(0.5, 2.0),
+        "sets f for this tuning ratio H²/(f m s R_M) when f_Nm is absent (1: tuned (13.60)); R_M = R − s",
+        GS_NUMBER(tuning_ratio)),
     F::number("compass", "f_Nm", "N m", Range::positive(), "spring coefficient, M^F = f sin 2δ (13.56)",
               GS_NUMBER(plant.compass.f))
-        .defaults_to([](const S& s) {
-          const auto& c = s.plant.compass;
-          return models::bauersfeld_tuned_spring(c.H, c.m, c.s, bauersfeld_radius_M(s)) / s.tuning_ratio;
-        }, "H²/(m s |R^M| tuning_ratio), |R^M| = R − s (13.60)"),
+        .defaults_to(
+            [](const S& s) {
+              const auto& c = s.plant.compass;
+              return models::bauersfeld_tuned_spring(c.H, c.m, c.s, bauersfeld_radius_M(s)) / s.tuning_ratio;
+            },
+            "H²/(m s R_M tuning_ratio), R_M = R − s (13.60)"),
     F::flag("compass", "tuned",
-            "refuse the scene unless H² = f m s |R^M| (13.60) to 1e-9 (else the report gives the ratio)",
+            "refuse the scene unless H² = f m s R_M (13.60) to 1e-9 (else the report gives the ratio)",
             GS_FLAG(tuned)),
     F::number("compass", "tilt0_east_deg", "deg", Range::closed(-10.0, 10.0),
               "initial tilt of a1 toward east, added to the start (13.64)", GS_NUMBER(plant.tilt0_east))
@@ -64,7 +68,8 @@ constexpr const char* kExclusiveDoc = "`[compass] f_Nm` and `tuning_ratio` exclu
 
 // An upper bound of |a1'| on the plan [rad/s]: the tuned compass's a1' is the vertical's absolute rate,
 // |ω_IG horizontal| ≤ |v|/R + |ω^E| cosφ, taken at ≤ 4000 instants and at every segment's ends, plus
-// its largest growth between instants, Δt (|a|/R + |ω^E| v/R); plus ω_S × the initial tilt (the swing's rate).
+// its largest growth between instants, Δt (|a|/R + |ω^E| v/R); plus ω_S × the initial tilt (the swing's
+// rate).
 double rate_bound_on_plan(const S& s) {
   const motion::VehicleMotionParams& m = s.plant.vehicle;
   const motion::EarthParams& e = m.earth;
@@ -85,7 +90,8 @@ double rate_bound_on_plan(const S& s) {
     a_max = std::max(a_max, std::fabs(m.segments[static_cast<std::size_t>(k)].acceleration));
   }
   const double tilt = std::hypot(s.plant.tilt0_east, s.plant.tilt0_north);
-  return worst + dt * (a_max / R + W * v_max / R) + std::sqrt(s.plant.compass.gravity / bauersfeld_radius_M(s)) * tilt;
+  return worst + dt * (a_max / R + W * v_max / R) +
+         std::sqrt(s.plant.compass.gravity / bauersfeld_radius_M(s)) * tilt;
 }
 
 constexpr schema::Rule<S> kRules[] = {
@@ -121,7 +127,8 @@ constexpr schema::Rule<S> kPlanRules[] = {
        const double q = c.H * s.rate_bound / (2.0 * c.f);
        if (q < 1.0) return "";
        return "no real swing δ: H |a1'| / (2 f) reaches " + format_3g(q) + " (|a1'| up to " +
-              format_3g(s.rate_bound) + " rad/s on this plan); raise H (tuned: sin δ = m s |R^M| |a1'| / (2 H)) "
+              format_3g(s.rate_bound) +
+              " rad/s on this plan); raise H (tuned: sin δ = m s |R^M| |a1'| / (2 H)) "
               "or f";
      }},
 };
@@ -147,8 +154,7 @@ constexpr schema::Rule<S> kLoopRules[] = {
        const double h = s.loop.tick_s() / s.loop.substeps;
        const double ws = std::sqrt(s.plant.compass.gravity / bauersfeld_radius_M(s));
        dynamics::StepBounds b{.keep_time = s.loop.duration_s, .amplitude_tolerance = 1e-6};
-       dynamics::StepCheck c =
-           dynamics::check_step(dynamics::Method::kRk4, {"Schuler", {0.0, ws}}, h, b);
+       dynamics::StepCheck c = dynamics::check_step(dynamics::Method::kRk4, {"Schuler", {0.0, ws}}, h, b);
        if (!c.ok) return c.message;
        const motion::VehicleMotionParams& m = s.plant.vehicle;
        for (int k = 0; k < m.count; ++k) {
