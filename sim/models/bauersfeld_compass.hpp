@@ -31,9 +31,11 @@
 // Support: any functor t → SupportSample {R^A, R^A''} in I axes [m, m/s²] with begin_step(t);
 // VehicleSupport samples the vehicle generator exactly at every stage, within the segment that holds the
 // step's start (a step ending on a manoeuvre corner sees the left limit there).
-// Step: RK4. Near the tuned motion the deviation obeys the Schuler oscillator (ω_S h ≈ 1e-3 at h = 1 s: RK4's
-// relative phase error (ω_S h)⁴/120 ≈ 2e-14 a step) driven by the quadrature error of the vertical's own
-// motion, h⁵/2880 × |R^A⁽⁶⁾|/R per step (a ship turning at 3°/s at 10 m/s: ≈ 1e-16 rad per 1-s step).
+// Step: RK4. Along the tuned motion the right-hand side is a function of time, −up''(t), and RK4 errs by
+// h⁵|up⁽⁵⁾|/720 in a1 and h⁵|up⁽⁶⁾|/2880 in a1' a step (Simpson), |up⁽ᵏ⁾| ≈ (v/R) r^(k−1) in a turn at rate r
+// (a ship at 10 m/s turning at 3°/s: 1.6e-14 rad a 1-s step), powers of v/R or ω^E elsewhere; a rate error e
+// becomes a Schuler swing of amplitude e/ω_S. The Schuler mode itself (ω_S h ≈ 1.2e-3 at h = 1 s) costs a
+// relative phase error (ω_S h)⁴/120 ≈ 2e-14 a step.
 // Docs: docs/models/bauersfeld-compass.md
 // Oracle: tests/oracle/bauersfeld_compass_test.cpp
 #pragma once

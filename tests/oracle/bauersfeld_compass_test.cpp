@@ -17,7 +17,7 @@
 // and for the position h⁵|up⁽⁵⁾|/720 a step. In a turn at rate r and speed v, |up⁽ᵏ⁾| ≈ (v/R) r^(k−1) (the
 // Earth-rate terms are smaller by ω^E/r); on straight legs and at rest the derivatives are powers of v/R or
 // ω^E (< 1e-20 s⁻⁵) and add nothing. The steps of a segment see one segment (corners on steps), so the jumps
-// cost nothing. A rate error δ turns into a Schuler swing of amplitude δ/ω_S, so the tilt's budget is
+// cost nothing. A rate error e turns into a Schuler swing of amplitude e/ω_S, so the tilt's budget is
 // Σ n h⁵ (v/R) r⁴/720 + (Σ n h⁵ (v/R) r⁵/2880)/ω_S over the turns (n steps each, no cancellation assumed),
 // plus rounding: 1e-13 rad (|a1| = 1 random-walks by ε = 1.1e-16 a step, ~1e-14 over 2e4 steps) and 1e-16
 // rad/s. The azimuth's error is the rate's error across a1 over |a1'| ≥ min |ω_IG horizontal|, and sin δ's is
