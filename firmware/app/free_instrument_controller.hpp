@@ -1,5 +1,6 @@
 // Controller of an instrument without torquers: a free position gyro read at its gimbal pick-offs (Magnus
-// §12.1) and the U-gyro rate gyro restrained by its spring (§15.4). The instrument needs no control law;
+// §12.1), the U-gyro rate gyro restrained by its spring (§15.4) and the spatial compass of Bauersfeld
+// (§13.4). The instrument needs no control law;
 // the controller exists because every device runs the same loop (fault monitor, scheduler, header, safe
 // state: controller_runtime.hpp), so its frames, counters and faults are screened and logged like any
 // other device's, in process, over LCM, CAN and on the target image.
@@ -8,7 +9,7 @@
 // Writes (ActuatorFrame): zero torque on both gimbal axes, precession_brake = 0. In the safe state the
 // runtime sets the brake to 1; the instruments' plants ignore it (an instrument has no brake).
 // No drive. Rates: the (empty) law every control_divisor base ticks.
-// Docs: docs/models/gimbal-error.md, docs/models/u-gyro.md
+// Docs: docs/models/gimbal-error.md, docs/models/u-gyro.md, docs/models/bauersfeld-compass.md
 #pragma once
 
 #include "firmware/app/controller_runtime.hpp"

@@ -56,7 +56,8 @@ constexpr schema::Field<Segment> kSegmentFields[] = {
 };
 
 constexpr const char* kNote =
-    "The instruments on a vehicle (`gyro_vertical`, `gyrocompass`, `inertial_platform`, `gyro_pendulum`) "
+    "The instruments on a vehicle (`gyro_vertical`, `gyrocompass`, `inertial_platform`, `gyro_pendulum`, "
+    "`bauersfeld_compass`) "
     "ride on a vehicle moving over the rotating spherical Earth: sim/motion/earth_vehicle.hpp (great-circle "
     "legs, coordinated turns, along-track accelerations; exact closed forms), planned by `[earth]`, "
     "`[vehicle]` and the consecutive sections `[segment1]`, `[segment2]`, … (at most 32; after the last one "
@@ -69,7 +70,8 @@ constexpr const char* kNote =
     "Earth's centrifugal acceleration (sim/plants/instrument_frames.hpp): on the real, ellipsoidal Earth the "
     "plumb line is the level surface's normal, the vertical the book refers them to; motion-induced terms "
     "(accelerations, Coriolis) stay. The inertial platform and the gyro pendulum keep the raw specific force "
-    "and refer to the geocentric vertical.";
+    "and refer to the geocentric vertical; so does the spatial compass (`bauersfeld_compass`: the absolute "
+    "acceleration and the book's central gravity, the generator sampled exactly at every RK4 stage).";
 
 }  // namespace
 

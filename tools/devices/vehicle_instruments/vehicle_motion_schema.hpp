@@ -1,5 +1,5 @@
-// The keys of the vehicle's motion over the rotating Earth that the four instruments on a vehicle
-// (gyro_vertical, gyrocompass, inertial_platform, gyro_pendulum) share: [earth], [vehicle] and the
+// The keys of the vehicle's motion over the rotating Earth that the instruments on a vehicle (gyro_vertical,
+// gyrocompass, inertial_platform, gyro_pendulum, bauersfeld_compass) share: [earth], [vehicle] and the
 // consecutive [segment1], [segment2], ... (at most 32), one field table over motion::VehicleMotionParams
 // (sim/motion/vehicle_motion.hpp). A device's defaults (its start latitude, its Earth rate) are the
 // initializers of its plant's VehicleMotionParams. Documented once in docs/scenes.md: each device's doc()
