@@ -67,6 +67,8 @@ SCENES = {
     "cmg-cluster-singularity-pseudo-inverse": "cmg_cluster",
     "cmg-cluster-singularity-robust": "cmg_cluster",
     "platform-alignment-aircraft": "platform_alignment",
+    "two-rotor-gyro-frame": "two_rotor_stabilizer",
+    "two-rotor-two-axis": "two_rotor_stabilizer",
 }
 
 failures = []

@@ -19,7 +19,8 @@ namespace gyrostab::tools {
   X(kFoucaultGyro)          \
   X(kPositionGyroPlatform)  \
   X(kCmgCluster)            \
-  X(kPlatformAlignment)
+  X(kPlatformAlignment)     \
+  X(kTwoRotorStabilizer)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,
