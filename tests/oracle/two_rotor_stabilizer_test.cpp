@@ -155,6 +155,7 @@ double growth(const Eigen::MatrixXd& J, int zeros_expected, int* zeros_found = n
 }
 
 TEST(TwoRotorGyroFrame, CharacteristicCubicIsTheLinearisation) {
+  double worst = 0.0;
   for (const double k : {100.0, 600.0, 1150.0, 1300.0}) {
     for (const double dK : {0.0, 20.0}) {
       const TwoRotorFrameParams p = frame_params();
@@ -173,6 +174,7 @@ TEST(TwoRotorGyroFrame, CharacteristicCubicIsTheLinearisation) {
           // Eigen's QR: backward error ~ 4 · 16 ε ‖J‖ ≈ 1e-14 ‖J‖; mapped through the cubic's conditioning
           // (simple roots) this is ≤ 1e-12 relative.
           EXPECT_LT(relative_residual(P, z), 1e-12) << "k=" << k << " dK=" << dK << " root " << z;
+          worst = std::max(worst, relative_residual(P, z));
         }
         EXPECT_EQ(zeros, 1) << "the frame angle is neutral";
         // Stability from Routh-Hurwitz equals that from the eigenvalues.
@@ -180,6 +182,7 @@ TEST(TwoRotorGyroFrame, CharacteristicCubicIsTheLinearisation) {
       }
     }
   }
+  std::printf("gyro frame: worst relative residual of the eigenvalues in (TR3) %.3g\n", worst);
   // (TR4) is where the Routh test flips.
   const TwoRotorFrameParams p = frame_params();
   const double kmax = models::gyro_frame_k_max(p, kDK);
@@ -299,6 +302,7 @@ TEST(TwoRotorGyroFrame, SimulatedBoundaryCrossing) {
 }
 
 TEST(TwoRotorTwoAxis, SexticIsTheLinearisation) {
+  double worst = 0.0;
   for (const double sigma : {-1.0, 1.0}) {
     for (const double k : {50.0, 500.0, 3000.0, 20000.0}) {
       const TwoRotorTwoAxisParams p = two_axis_params(sigma);
@@ -315,11 +319,13 @@ TEST(TwoRotorTwoAxis, SexticIsTheLinearisation) {
         }
         // 8×8 QR, backward error ~ 8 · 16 ε ‖J‖; the sextic's roots are simple and well separated here.
         EXPECT_LT(relative_residual(P, z), 1e-11) << "sigma=" << sigma << " k=" << k << " root " << z;
+        worst = std::max(worst, relative_residual(P, z));
       }
       EXPECT_EQ(zeros, 2) << "the two frame angles are neutral";
       EXPECT_EQ(firmware::routh_stable(P), growth(J, 2) < 0.0) << "sigma=" << sigma << " k=" << k;
     }
   }
+  std::printf("two-axis: worst relative residual of the eigenvalues in P6 %.3g\n", worst);
 }
 
 TEST(TwoRotorTwoAxis, ConstantDisturbanceSteadyStates) {
