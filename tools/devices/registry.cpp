@@ -20,7 +20,8 @@ namespace gyrostab::tools {
   X(kPositionGyroPlatform)  \
   X(kCmgCluster)            \
   X(kPlatformAlignment)     \
-  X(kBauersfeldCompass)
+  X(kBauersfeldCompass)     \
+  X(kTwoRotorStabilizer)
 
 #define GYROSTAB_DECLARE(d) extern const DeviceDescriptor d;
 #define GYROSTAB_ENTRY(d) &d,

@@ -1,0 +1,158 @@
+// What a two-rotor stabilizer run reports: the plant of sim/plants/two_rotor_stabilizer_plant.hpp with its
+// meters — the frames' peak and final angles, the case angles against the steady states M/k of the final
+// disturbance, the law's gain margin; for the gyro frame also a single rotor of spin 2H and case inertia 2B
+// (sim/models/two_rotor_gyro_frame.hpp with σ = s = +1) under the same base motion, disturbance and law
+// (continuous, integrated beside the plant with the plant's step), and the link torque (TR2).
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "firmware/platform/posix/monotonic_clock.hpp"
+#include "tools/devices/device_scene_of.hpp"
+#include "tools/devices/two_rotor_stabilizer/two_rotor_stabilizer_scene.hpp"
+
+namespace gyrostab::tools {
+namespace {
+
+using Plant = plants::TwoRotorStabilizerPlant;
+using Axis = models::TwoRotorTwoAxis;
+using Controller = firmware::BasicTwoRotorStabilizerController<firmware::posix::MonotonicClock>;
+
+const std::vector<std::string>& columns() {
+  static const std::vector<std::string> c{"alpha_rad", "gamma_rad", "beta1_rad", "beta2_rad",
+                                          "M1K_Nm",    "M2K_Nm",    "single_rotor_alpha_rad",
+                                          "link_torque_Nm", "status_bits"};
+  return c;
+}
+
+// The single rotor of the comparison with the law closed continuously.
+struct SingleRotor {
+  static constexpr int kStateSize = 4;
+  using Model = models::TwoRotorGyroFrame<plants::TwoRotorBase>;
+  using State = Model::State;
+  mutable Model m;
+  plants::TwoRotorDisturbance dist;
+  double k, dK;
+  void derivative(double t, const State& x, State& dx) const {
+    m.inputs.M1S = t >= dist.M1_time_s ? dist.M1_Nm : 0.0;
+    m.inputs.M2S = t >= dist.M2_time_s ? dist.M2_Nm : 0.0;
+    m.inputs.M1K = -k * x[Model::kBeta] - dK * x[Model::kAlphaRate];
+    m.derivative(t, x, dx);
+  }
+  void project(State&) const {}
+};
+
+models::TwoRotorFrameParams single_of(models::TwoRotorFrameParams p) {
+  p.spin_sign = 1.0;
+  p.link_sign = 1.0;
+  return p;
+}
+
+class TwoRotorRun {
+ public:
+  explicit TwoRotorRun(const TwoRotorStabilizerScene& s)
+      : s_(s),
+        plant_(s.plant, s.loop.plant_timing()),
+        single_{SingleRotor::Model(single_of(s.plant.frame), s.plant.base), s.plant.disturbance,
+                s.controller.law.k1, s.controller.law.dK1},
+        single_rk_(single_),
+        single_x_(SingleRotor::State::Zero()),
+        gain_margin_(firmware::two_rotor_gain_scale_max(s.controller.law)) {}
+
+  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const msg::ActuatorFrame& cmd) {
+    last_ = cmd;
+    plant_.actuate(cmd);
+  }
+  void advance(std::int64_t tick) {
+    const double t = static_cast<double>(tick) * s_.loop.tick_s();
+    if (frame()) {
+      link_ = plant_.link_torque_Nm(t);
+      link_peak_ = std::max(link_peak_, std::fabs(link_));
+      const double h = s_.loop.tick_s() / s_.loop.substeps;
+      for (int i = 0; i < s_.loop.substeps; ++i) single_rk_.step(t + i * h, h, single_x_);
+      single_peak_ = std::max(single_peak_, std::fabs(single_x_[SingleRotor::Model::kAlpha]));
+    }
+    plant_.advance(tick);
+    alpha_peak_ = std::max(alpha_peak_, std::fabs(plant_.value(Axis::kAlpha)));
+    gamma_peak_ = std::max(gamma_peak_, std::fabs(plant_.value(Axis::kGamma)));
+    ticks_ = tick + 1;
+  }
+  bool finite() const { return plant_.finite() && single_x_.allFinite(); }
+
+  static constexpr int kGuardedStates = Plant::kGuardedStates;
+  static const char* state_name(int i) { return Plant::state_name(i); }
+  double state_value(int i) const { return plant_.state_value(i); }
+
+  void record(double* row) const {
+    for (int i = 0; i < 4; ++i) row[i] = plant_.value(i);
+    row[4] = last_.gimbal_torque_Nm[msg::kAxis1];
+    row[5] = last_.gimbal_torque_Nm[msg::kAxis2];
+    row[6] = frame() ? single_x_[SingleRotor::Model::kAlpha] : 0.0;
+    row[7] = link_;
+    row[8] = static_cast<double>(last_.status);
+  }
+
+  nlohmann::json figures() const {
+    const auto& d = s_.plant.disturbance;
+    const auto& l = s_.controller.law;
+    const double t_end = static_cast<double>(ticks_) * s_.loop.tick_s();
+    const double M1 = t_end >= d.M1_time_s ? d.M1_Nm : 0.0;
+    const double M2 = t_end >= d.M2_time_s ? d.M2_Nm : 0.0;
+    nlohmann::json f{{"alpha_peak_rad", alpha_peak_},
+                     {"alpha_final_rad", plant_.value(Axis::kAlpha)},
+                     {"beta1_final_rad", plant_.value(Axis::kBeta1)},
+                     {"beta1_expected_rad", M1 / l.k1},
+                     {"gain_margin", std::isfinite(gain_margin_) ? nlohmann::json(gain_margin_) : nullptr},
+                     {"ticks", ticks_}};
+    if (frame()) {
+      f["single_rotor_alpha_peak_rad"] = single_peak_;
+      f["single_rotor_alpha_final_rad"] = single_x_[SingleRotor::Model::kAlpha];
+      f["link_torque_peak_Nm"] = link_peak_;
+    } else {
+      f["gamma_peak_rad"] = gamma_peak_;
+      f["beta2_final_rad"] = plant_.value(Axis::kBeta2);
+      f["beta2_expected_rad"] = -l.spin_sign * M2 / l.k2;
+    }
+    return f;
+  }
+
+ private:
+  bool frame() const { return s_.plant.kind == plants::TwoRotorPlantKind::kGyroFrame; }
+
+  const TwoRotorStabilizerScene& s_;
+  Plant plant_;
+  SingleRotor single_;
+  dynamics::Rk4<SingleRotor> single_rk_;
+  SingleRotor::State single_x_;
+  double gain_margin_;
+  msg::ActuatorFrame last_{};
+  double alpha_peak_{0.0}, gamma_peak_{0.0}, single_peak_{0.0}, link_{0.0}, link_peak_{0.0};
+  std::int64_t ticks_{0};
+};
+
+struct TwoRotorTraits {
+  using Scene = TwoRotorStabilizerScene;
+  using Binding = TwoRotorRun;
+  using Controller = tools::Controller;
+  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
+  static hil::ActuatorLimits actuator_limits(const Scene& s) {
+    hil::ActuatorLimits l;
+    l.torque_Nm[0] = l.torque_Nm[1] = s.controller.law.torque_limit_Nm;
+    l.from_scene = true;
+    return l;
+  }
+  static nlohmann::json limits(const Scene& s) {
+    return {{"motor_torque_limit_Nm", s.controller.law.torque_limit_Nm}};
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<DeviceScene> make_two_rotor_stabilizer_scene(std::unique_ptr<TwoRotorStabilizerScene> s) {
+  return std::make_unique<DeviceSceneOf<TwoRotorTraits>>(std::move(s));
+}
+
+}  // namespace gyrostab::tools
