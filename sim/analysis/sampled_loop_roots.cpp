@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 
+#include <Eigen/LU>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "sim/dynamics/eigenvalues.hpp"
@@ -88,6 +89,17 @@ SampledLoopRoots sampled_loop_roots(const LinearPlant& p, const DiscreteLaw& law
     if (std::abs(z) > 1e-6) out.s.push_back(std::log(z) / t.period_s);
   }
   return out;
+}
+
+Eigen::VectorXd sampled_steady_state(const LinearPlant& p, const DiscreteLaw& law, const SampledTiming& t,
+                                     const Eigen::MatrixXd& E, const Eigen::VectorXd& v) {
+  const Eigen::MatrixXd M = sampled_closed_loop(p, law, t);
+  const Eigen::Index n = p.A.rows(), N = M.rows();
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(N);
+  f.head(n) = zoh_step(p.A, E, t.period_s).Gamma * v;
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd::Identity(N, N) - M);
+  if (!lu.isInvertible()) return Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
+  return lu.solve(f).head(n);
 }
 
 std::complex<double> nearest_root(const std::vector<std::complex<double>>& s, std::complex<double> continuous) {

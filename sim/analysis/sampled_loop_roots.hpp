@@ -59,6 +59,12 @@ ZohStep zoh_step(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double t);
 Eigen::MatrixXd sampled_closed_loop(const LinearPlant& p, const DiscreteLaw& law, const SampledTiming& t);
 SampledLoopRoots sampled_loop_roots(const LinearPlant& p, const DiscreteLaw& law, const SampledTiming& t);
 
+// The sampled loop's fixed point under a constant plant input v (ẋ = A x + B u + E v): the plant state x*
+// (with a memoryless law the continuous loop's equilibrium: ZOH keeps equilibria). NaN when I − M is singular
+// (a neutral mode, e.g. the back-EMF stabilizer's α).
+Eigen::VectorXd sampled_steady_state(const LinearPlant& p, const DiscreteLaw& law, const SampledTiming& t,
+                                     const Eigen::MatrixXd& E, const Eigen::VectorXd& v);
+
 // The sampled root nearest to a continuous one (the same mode moved by the sampling), returned in the
 // half-plane of `continuous` (Im s ≥ 0 when Im continuous ≥ 0). Matching by distance rather than by "largest
 // |Im|" keeps a delay line's fast roots (near z = 0, |Im s| up to π/T) from being taken for the mode.
