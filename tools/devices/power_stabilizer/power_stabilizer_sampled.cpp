@@ -56,7 +56,18 @@ PowerStabilizerSampled power_stabilizer_sampled(const firmware::PowerStabilizerC
                                                 const analysis::SampledTiming& t) {
   PowerStabilizerSampled out;
   out.timing = t;
-  out.roots = analysis::sampled_loop_roots(power_stabilizer_linear_plant(l), power_stabilizer_probed_law(l), t);
+  analysis::LinearPlant p = power_stabilizer_linear_plant(l);
+  const analysis::DiscreteLaw law = power_stabilizer_probed_law(l);
+  // Back-EMF mode: α is neutral (the λ = 0 of (14.29): no torque depends on α, and the law reads β and α'
+  // only), a root at z = 1 exactly that no verdict should weigh. α is dropped from the state when nothing
+  // reads it; its row of C is then zero.
+  if (l.output == firmware::PowerStabilizerOutput::kBackEmfVoltage && law.D.col(0).isZero(0.0) &&
+      p.A.col(0).isZero(0.0)) {
+    p.A = Eigen::MatrixXd(p.A.bottomRightCorner(3, 3));
+    p.B = Eigen::MatrixXd(p.B.bottomRows(3));
+    p.C = Eigen::MatrixXd(p.C.rightCols(3));
+  }
+  out.roots = analysis::sampled_loop_roots(p, law, t);
   out.nutation = analysis::nearest_root(out.roots.s, predicted_nutation(l));
   return out;
 }
