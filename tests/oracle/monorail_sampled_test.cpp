@@ -7,7 +7,7 @@
 //       a least-squares linear-prediction fit (φ[k] of a linear sampled loop obeys a recurrence of the loop's
 //       order; its characteristic roots are the loop's z): the slowest mode's decay within 1e-4 of the
 //       sampled root, while the continuous root misses by more than 1.5e-3;
-//   (e) the check refuses a loop stable in continuous time but not sampled (the law at 10 Hz), saying so.
+//   (d) the check refuses a loop stable in continuous time but not sampled (the law at 10 Hz), saying so.
 // Tolerance (c): the run integrates with RK4 at the 1 ms tick (modes ≤ 9.3 rad/s: a relative error
 // (hω)⁴/120 ≈ 6e-11 per step), the release tilt 0.015° keeps the large-angle terms at (φ²/6) ≈ 1e-8, the
 // CSV's 17 digits and the fit's conditioning (the slowest |z| = 0.9993): measured 2e-7 on the straight, 4e-6
