@@ -18,6 +18,7 @@
 #include "sim/analysis/window_mean.hpp"
 #include "tools/devices/monorail/monorail_curve.hpp"
 #include "tools/devices/device_scene_of.hpp"
+#include "tools/devices/monorail/monorail_sampled.hpp"
 #include "tools/devices/monorail/monorail_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
 
@@ -123,7 +124,11 @@ class MonorailRun {
     const firmware::MonorailGainWindow straight = firmware::monorail_gain_window(law);
     const firmware::MonorailGainWindow curve = firmware::monorail_gain_window(law_in_curve(law, W));
     const double tick_s = s_.loop.tick_s();
-    return {
+    // The same loops sampled as the closed loop runs them (hold, period, latency): monorail_sampled.hpp.
+    const analysis::SampledTiming timing = monorail_timing(s_.controller, tick_s, s_.loop.latency_ticks);
+    const MonorailSampled straight_sampled = monorail_sampled(car, s_.controller, 0.0, timing);
+    const MonorailSampled curve_sampled = monorail_sampled(car, s_.controller, W, timing);
+    nlohmann::json f = {
         {"tilt_rms_rad", tilt_.rms()},
         {"tilt_max_rad", tilt_.peak},
         {"case_angle_max_rad", case_peak_},
@@ -157,6 +162,14 @@ class MonorailRun {
                                 : nlohmann::json()},
         {"statistics_from_s", s_.settle_s},
         {"ticks", ticks_}};
+    f["decay_rate_per_s_predicted_sampled"] = straight_sampled.decay_rate_per_s;
+    f["curve_decay_rate_per_s_predicted_sampled"] = curve_sampled.decay_rate_per_s;
+    f["sampled_loop_max_abs_z"] = std::max(straight_sampled.roots.max_abs_z, curve_sampled.roots.max_abs_z);
+    f["gust_lean_rad_predicted_sampled"] = predicted_sampled(gust_window_, timing, 0);
+    f["gust_case_angle_rad_predicted_sampled"] = predicted_sampled(gust_window_, timing, 1);
+    f["curve_lean_rad_predicted_sampled"] = predicted_sampled(curve_window_, timing, 0);
+    f["curve_case_angle_rad_predicted_sampled"] = predicted_sampled(curve_window_, timing, 1);
+    return f;
   }
 
   // report.json "error_estimate": 1 s from the first load (the gust's or the curve's start, else t = 0; the
@@ -209,6 +222,17 @@ class MonorailRun {
     const double t = window_time(w), W = s_.plant.track.curve(t);
     const double phi = predicted_lean(w).get<double>();
     return -s_.controller.law.k * (phi + s_.plant.sensors.tilt_bias_rad) / (car.q - car.H * W);
+  }
+
+  // The sampled loop's fixed point under the window's moment and the tilt bias: [φ, β][which].
+  nlohmann::json predicted_sampled(const LeanWindow& w, const analysis::SampledTiming& timing, int which) const {
+    if (!w.active) return nlohmann::json();
+    const models::MonorailParams& car = s_.plant.car;
+    const double t = window_time(w), W = s_.plant.track.curve(t);
+    const double M1 = s_.plant.track.gust(t) + car.c * plant_.lateral_g(t);
+    const Eigen::Vector2d x =
+        monorail_sampled_steady(car, s_.controller, W, timing, M1, s_.plant.sensors.tilt_bias_rad);
+    return std::isfinite(x[which]) ? nlohmann::json(x[which]) : nlohmann::json();
   }
 
   const MonorailScene& s_;

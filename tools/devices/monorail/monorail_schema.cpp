@@ -9,6 +9,7 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/dynamics/step_validation.hpp"
 #include "tools/devices/monorail/monorail_curve.hpp"
+#include "tools/devices/monorail/monorail_sampled.hpp"
 #include "tools/devices/monorail/monorail_scene.hpp"
 #include "tools/run/controller_report.hpp"
 #include "tools/scene/schema.hpp"
@@ -149,6 +150,35 @@ std::string curve_problem(const S& s) {
   return msg;
 }
 
+// The sampled verdict on the straight and in the curve: "" or the problem. The firmware's check and the
+// curve rule are the continuous tests; a loop they accept that the sampled loop cannot hold is refused, and
+// where they refuse but the sampled loop would be stable the message says so.
+std::string sampled_problem(const S& s) {
+  const analysis::SampledTiming timing = monorail_timing(s.controller, s.loop.tick_s(), s.loop.latency_ticks);
+  const double W = s.plant.track.curve.Omega3;
+  const bool has_curve = std::isfinite(s.plant.track.curve.start_s) && W != 0.0 && !s.allow_unstable_curve;
+  std::string out;
+  for (int i = 0; i < (has_curve ? 2 : 1); ++i) {
+    const double Omega3 = i == 0 ? 0.0 : W;
+    const MonorailSampled m = monorail_sampled(s.plant.car, s.controller, Omega3, timing);
+    // The continuous verdict of (14.5) for the same loop (the check's and the curve rule's Hurwitz test).
+    const bool cont = firmware::monorail_gain_window(law_in_curve(s.controller.law, Omega3)).hurwitz.stable;
+    char where[96];
+    std::snprintf(where, sizeof where, " (%s, law every %.4g ms, latency %d tick(s))",
+                  i == 0 ? "on the straight" : "in the curve", timing.period_s * 1e3, s.loop.latency_ticks);
+    if (cont && !m.roots.stable()) {
+      out += (out.empty() ? "" : "; ") + std::string("the sampled loop is unstable: ") +
+             analysis::sampled_instability(m.roots, timing, true) + where;
+    } else if (!cont && m.roots.stable()) {
+      char buf[128];
+      std::snprintf(buf, sizeof buf, "unstable in continuous time; the sampled loop would be stable (|z| = %.6g)",
+                    m.roots.max_abs_z);
+      out += (out.empty() ? "" : "; ") + std::string(buf) + where;
+    }
+  }
+  return out;
+}
+
 // The plant step against the car's fastest mode for the car `p`, from the initial state; "" or the problem.
 std::string plant_step_problem(const S& s, const models::MonorailParams& p) {
   const double h_sub = s.loop.tick_s() / s.loop.substeps;
@@ -186,6 +216,14 @@ constexpr schema::Rule<S> kRules[] = {
      [](const S& s) -> std::string {
        if (!consistent(s) || !Controller::check(s.controller).ok) return "";
        return curve_problem(s);
+     }},
+    {"controller", "k",
+     "the loop as it runs — sampled at the law's period (control_divisor ticks) through the zero-order hold "
+     "with latency_ticks of latency (docs/sampled-data.md) — has every root |z| < 1 on the straight and at "
+     "the curve's Ω3 (unless allow_unstable_curve); the message says when the continuous verdict differs",
+     [](const S& s) -> std::string {
+       if (!consistent(s)) return "";
+       return sampled_problem(s);
      }},
     {"loop", "plant_substeps",
      "the plant step resolves the car's fastest mode, with the law's k and d in the linearisation as passive "

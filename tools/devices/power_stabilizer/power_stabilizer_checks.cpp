@@ -38,6 +38,9 @@ std::vector<std::string> power_stabilizer_plant_rules() {
       "the loop (14.23)/(14.29) linearised at the inner gimbal's operating points — `beta0_deg` and the "
       "steady deflection M1/k1 (14.21) — with H cos β and I(β) passes the same test, else \"gimbal-lock "
       "approach\" names the angle and the coupling",
+      "the loop as it runs — sampled at the law's period (control_divisor ticks) through the zero-order hold with "
+      "latency_ticks of latency, at the same operating points — has every root |z| < 1 (docs/sampled-data.md); "
+      "the message says when the continuous verdict differs",
       "the plant step resolves the fastest mode (step validation: the sub-steps needed are printed); "
       "dc_motor: the step is below the explicit drive coupling's 2J/(b + b_e)",
       "precession: ε = ω_P/ω_N < 0.1 at the operating point, no `dc_motor`; the full model for the "

@@ -12,6 +12,7 @@
 #include "sim/drives/gimbal_drive.hpp"
 #include "sim/dynamics/step_validation.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_checks.hpp"
+#include "tools/devices/power_stabilizer/power_stabilizer_sampled.hpp"
 #include "tools/run/controller_report.hpp"
 
 namespace gyrostab::tools::power_stabilizer_checks {
@@ -27,6 +28,40 @@ firmware::PowerStabilizerConfig loops_at(const Plant& plant, firmware::PowerStab
   l.A = l.A - p.A() + p.outer_axis_inertia(beta);
   l.H = l.H * std::cos(beta);
   return l;
+}
+
+// The stability verdict of the loop as it runs: sampled at the law's period with the hold and the latency
+// (power_stabilizer_sampled.hpp), at the same operating points. The firmware's start-up check is the
+// continuous Hurwitz test; where the two differ the message says so: a loop the continuous test accepts but
+// the sampled loop cannot hold is refused, and a refusal the sampled loop would not share is noted.
+template <class Plant>
+void check_sampled(SceneReader& r, PowerStabilizerScene& s, const Plant& plant, const double (&points)[2]) {
+  const auto& l = s.controller.loops;
+  const analysis::SampledTiming timing = power_stabilizer_timing(s);
+  const char* key = s.back_emf() ? "r" : "k1";
+  for (int i = 0; i < 2; ++i) {
+    if (i == 1 && std::abs(points[1] - points[0]) < 1e-9) continue;
+    if (!(std::abs(points[i]) < 0.5 * std::numbers::pi)) continue;  // gimbal lock: refused above
+    const firmware::PowerStabilizerConfig at = loops_at(plant, l, points[i]);
+    const firmware::GainCheck g = firmware::check_power_stabilizer_gains(at);
+    if (g.verdict == firmware::GainCheckVerdict::kInvalidPlant || g.verdict == firmware::GainCheckVerdict::kInvalidGain ||
+        g.verdict == firmware::GainCheckVerdict::kInvalidLimit)
+      continue;  // refused for its parameters, not its stability
+    const PowerStabilizerSampled sampled = power_stabilizer_sampled(at, timing);
+    char where[120];
+    std::snprintf(where, sizeof where, " (the loop at beta = %.4g deg, law every %.4g ms, latency %d tick(s))",
+                  points[i] * 180.0 / std::numbers::pi, timing.period_s * 1e3, s.loop.latency_ticks);
+    if (g.accepted && !sampled.roots.stable()) {
+      r.fail("controller", key,
+             "the sampled loop is unstable: " + analysis::sampled_instability(sampled.roots, timing, true) + where +
+                 "; lower the gains or the tick, or reduce the latency");
+    } else if (!g.accepted && sampled.roots.stable()) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "the sampled loop would be stable (|z| = %.6g) but the firmware's start-up check "
+                    "is the continuous test and refuses these gains", sampled.roots.max_abs_z);
+      r.fail("controller", key, std::string("unstable in continuous time; ") + buf + where);
+    }
+  }
 }
 
 // The gimbal-lock approach: the controller checks its gains at β = 0, but near β = ±90° the coupling H cos β
@@ -61,6 +96,7 @@ void check_operating_points(SceneReader& r, PowerStabilizerScene& s, const Plant
              std::string(buf) + g.reason + " (gain margin there " + std::to_string(g.gain_scale_max) + ")");
     }
   }
+  check_sampled(r, s, plant, points);
 }
 
 template <class Motor, class Structure, class Fidelity = models::FullGimbal>

@@ -21,6 +21,7 @@
 #include "sim/analysis/periodic_drift.hpp"
 #include "sim/analysis/running_stats.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_checks.hpp"
+#include "tools/devices/power_stabilizer/power_stabilizer_sampled.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
 #include "tools/run/periodic_drift_report.hpp"
@@ -147,6 +148,16 @@ class PowerStabilizerRun {
                      {"beta_max_rad", beta_.peak},
                      {"gain_margin", g.gain_scale_max},
                      {"open_loop_nutation_rad_s", s_.plant.H / std::sqrt(l.A * l.B)}};
+    // The same loop as the `_predicted` figures, sampled as the closed loop runs it (hold, period, latency):
+    // power_stabilizer_sampled.hpp, docs/sampled-data.md.
+    const PowerStabilizerSampled sampled = power_stabilizer_sampled(s_.op_loops, power_stabilizer_timing(s_));
+    f["nutation_frequency_rad_s_predicted_sampled"] = sampled.nutation.imag();
+    f["nutation_decay_rate_per_s_predicted_sampled"] = -sampled.nutation.real();
+    f["sampled_loop_max_abs_z"] = sampled.roots.max_abs_z;
+    const Eigen::Vector2d steady = power_stabilizer_sampled_steady(s_.op_loops, sampled.timing, dist.M1, dist.M2);
+    const auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+    f["steady_alpha_rad_predicted_sampled"] = finite_or_null(steady[0]);
+    f["steady_beta_rad_predicted_sampled"] = finite_or_null(steady[1]);
     if constexpr (kBackEmf) {
       // (14.27) at rest: s r β = M1^S; α is neutral (λ = 0 of (14.29)): a constant M2^S makes it precess.
       f["steady_beta_rad_predicted"] = dist.M1 / (l.s * l.r);

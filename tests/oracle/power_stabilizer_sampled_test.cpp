@@ -1,0 +1,274 @@
+// The power stabilizer's sampled-data prediction (tools/devices/power_stabilizer/power_stabilizer_sampled.hpp,
+// docs/sampled-data.md) against the firmware law and the shipped scenes:
+//   (a) the law's matrix probed from PowerStabilizerLoops::compute is the law: on random unsaturated frames
+//       D y equals compute()'s command (both modes);
+//   (b) the continuous limit: the eigenvalues of A + B D C include the root of (14.23)/(14.29) the
+//       `_predicted` figures use, and the sampled root at T = 1 µs lies within O(T) of it;
+//   (c) the shipped scene's loop in its linear regime (the inner-axis step only, so β stays at the
+//       linearisation point β0 = 0; rate noise off) measures the sampled root within 1e-3, and the continuous
+//       root misses by more than 2.5e-3 — the 1 ms hold and the 1 ms latency are what the prediction adds;
+//       and the root identified from the recorded α[k] by a linear-prediction fit, within 1e-5;
+//   (d) the shipped scenes as they are: the sampled prediction is the closer one; what is left is the
+//       measurement's (seeded rate noise, the operating point moving under the 20 N m step), bounded below;
+//   (e) the check refuses a loop that is stable in continuous time but not sampled, and says so.
+#include "tools/devices/power_stabilizer/power_stabilizer_sampled.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/QR>
+
+#include "sim/dynamics/eigenvalues.hpp"
+#include "tools/commands.hpp"
+#include "tools/devices/power_stabilizer/power_stabilizer_checks.hpp"
+
+namespace gyrostab::power_stabilizer_sampled_test {
+
+using firmware::PowerStabilizerConfig;
+using firmware::PowerStabilizerOutput;
+
+std::string read_text(const std::string& path) {
+  std::ifstream f(path);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::string replaced(std::string t, const std::string& from, const std::string& to) {
+  const auto at = t.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) t.replace(at, from.size(), to);
+  return t;
+}
+
+const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
+
+nlohmann::json figures_of(const std::string& path, const std::string& text) {
+  tools::RunRequest req;
+  req.scene_path = path;
+  req.scene_text = text;
+  req.scene_file_root = kScenes;
+  req.write_outputs = false;
+  req.progress = false;
+  nlohmann::json report;
+  std::string csv;
+  req.report_out = &report;
+  req.csv_out = &csv;
+  EXPECT_EQ(tools::run_scene(req), 0);
+  return report["figures"];
+}
+
+double rel(double a, double b) { return std::fabs(a - b) / std::fabs(b); }
+
+TEST(PowerStabilizerSampled, ProbedLawIsTheFirmwareLaw) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  for (const PowerStabilizerOutput mode : {PowerStabilizerOutput::kTorque, PowerStabilizerOutput::kBackEmfVoltage}) {
+    PowerStabilizerConfig c;
+    c.output = mode;
+    c.d_c = 0.3;
+    c.A = 2.0;
+    c.B = 1.5;
+    c.H = 200.0;
+    c.k1 = 200.0;
+    c.k2 = 150.0;
+    c.d1 = 5.0;
+    c.d2 = 4.0;
+    const analysis::DiscreteLaw law = tools::power_stabilizer_probed_law(c);
+    const firmware::PowerStabilizerLoops loops(c);
+    ASSERT_TRUE(loops.armed());
+    for (int n = 0; n < 100; ++n) {
+      msg::SensorFrame in{};
+      Eigen::Vector4d y(u(rng), u(rng), u(rng), u(rng));
+      in.gimbal_angle_rad[msg::kAxis1] = y[0];
+      in.gimbal_angle_rad[msg::kAxis2] = y[1];
+      in.gimbal_rate_rad_s[msg::kAxis1] = y[2];
+      in.gimbal_rate_rad_s[msg::kAxis2] = y[3];
+      msg::ActuatorFrame out{};
+      loops.compute(in, out);
+      const Eigen::VectorXd cmd = law.D * y;
+      if (mode == PowerStabilizerOutput::kTorque) {
+        ASSERT_EQ(cmd.size(), 2);
+        EXPECT_NEAR(cmd[0], out.gimbal_torque_Nm[msg::kAxis1], 1e-13 * 100.0);
+        EXPECT_NEAR(cmd[1], out.gimbal_torque_Nm[msg::kAxis2], 1e-13 * 100.0);
+      } else {
+        ASSERT_EQ(cmd.size(), 1);
+        EXPECT_NEAR(cmd[0], out.motor_voltage_V[msg::kAxis1], 1e-13 * 10.0);
+      }
+    }
+    EXPECT_EQ(law.F.rows(), 0);  // memoryless: compute() keeps no state
+  }
+}
+
+TEST(PowerStabilizerSampled, ContinuousLimitIsTheCharacteristicEquation) {
+  for (const PowerStabilizerOutput mode : {PowerStabilizerOutput::kTorque, PowerStabilizerOutput::kBackEmfVoltage}) {
+    PowerStabilizerConfig c;
+    c.output = mode;
+    c.bearing_d1 = 0.05;
+    c.bearing_d2 = 0.05;
+    const analysis::LinearPlant p = tools::power_stabilizer_linear_plant(c);
+    const analysis::DiscreteLaw law = tools::power_stabilizer_probed_law(c);
+    const Eigen::VectorXcd ev = dynamics::eigenvalues(Eigen::MatrixXd(p.A + p.B * law.D * p.C));
+    const std::complex<double> want = tools::predicted_nutation(c);
+    double best = 1e300;
+    for (Eigen::Index i = 0; i < ev.size(); ++i) best = std::min(best, std::abs(ev(i) - want));
+    EXPECT_LT(best, 1e-9 * std::abs(want)) << "mode " << static_cast<int>(mode);
+    // T = 1 µs, one tick of latency: the root moves by ≈ 1.5 T |λ|² ~ 5e-3 /s (ω ≈ 56 rad/s) — O(T).
+    const tools::PowerStabilizerSampled s = tools::power_stabilizer_sampled(c, {1e-6, 1e-6});
+    EXPECT_LT(std::abs(s.nutation - want), 2e-2) << s.nutation << " vs " << want;
+    EXPECT_TRUE(s.roots.stable());
+  }
+}
+
+// (c) The shipped scene in its linear regime. The measured figures come from the meter on α' (extrema by
+// parabola, 55 samples per period: a vertex-time error O((ωT)² T) ~ 1e-5 relative on the frequency, a
+// constant relative amplitude bias that leaves the decay rate alone); the inner-axis step leaves β ≈ 0
+// (the nutation's β amplitude ~ M2/(H ω) = 4e-4 rad: H cos β moves by 1e-7); the encoder's 2.4e-5 rad
+// count gives a torque jitter k·q = 5e-3 N m against a 10 N m step, measured 2.5e-4 on the decay. Tolerance
+// 1e-3 on both figures; the continuous roots miss by 9.3e-3 (decay) and 3.0e-3 (frequency).
+TEST(PowerStabilizerSampled, ShippedSceneInItsLinearRegimeMeasuresTheSampledRoots) {
+  const std::string path = kScenes + "power-stabilizer.toml";
+  std::string text = read_text(path);
+  text = replaced(text, "M1_Nm = 20.0 ", "M1_Nm = 0.0 ");
+  text = replaced(text, "rate_noise_density = 1e-4", "rate_noise_density = 0.0");
+  const nlohmann::json f = figures_of(path, text);
+  std::printf("  %s\n", f.dump().c_str());
+  ASSERT_TRUE(f["nutation_decay_rate_per_s"].is_number()) << f.dump();
+  const double decay = f["nutation_decay_rate_per_s"].get<double>(), freq = f["nutation_frequency_rad_s"].get<double>();
+  const double decay_s = f["nutation_decay_rate_per_s_predicted_sampled"].get<double>();
+  const double freq_s = f["nutation_frequency_rad_s_predicted_sampled"].get<double>();
+  const double decay_c = f["nutation_decay_rate_per_s_predicted"].get<double>();
+  const double freq_c = f["nutation_frequency_rad_s_predicted"].get<double>();
+  EXPECT_LT(rel(decay, decay_s), 1e-3) << decay << " vs sampled " << decay_s;
+  EXPECT_LT(rel(freq, freq_s), 1e-3) << freq << " vs sampled " << freq_s;
+  EXPECT_GT(rel(decay, decay_c), 2.5e-3) << decay << " vs continuous " << decay_c;
+  EXPECT_GT(rel(freq, freq_c), 2.5e-3) << freq << " vs continuous " << freq_c;
+  // The sampled steady state is the continuous one (a zero-order hold keeps equilibria): α = −M2/k2.
+  EXPECT_NEAR(f["steady_alpha_rad_predicted_sampled"].get<double>(), f["steady_alpha_rad_predicted"].get<double>(), 1e-12);
+  EXPECT_NEAR(f["steady_alpha_rad"].get<double>(), f["steady_alpha_rad_predicted_sampled"].get<double>(), 1e-4);
+}
+
+// (c') The same loop's nutation root identified from the recorded trajectory instead of the meter: α[k] of the
+// sampled linear loop (4 states + 2 commands in flight; α itself enters no equation, so the 0.05 rad the
+// inner-axis step moves it leaves the loop linear) obeys a recurrence of order 6 plus a constant (the new
+// equilibrium); its least-squares fit over 1.5 s after the step has the loop's z. The encoder is set to its
+// finest (2^30 counts: a torque jitter k·q = 1e-6 N m against the 10 N m step) so that only rounding
+// remains. Tolerance 1e-5 on both figures (the gyro-exponential flow carries the gyroscopic pair exactly,
+// and the nutation's β amplitude 4e-4 rad moves H cos β by 1e-7).
+TEST(PowerStabilizerSampled, RootsIdentifiedFromTheShippedLoopAreTheSampledRoots) {
+  const std::string path = kScenes + "power-stabilizer.toml";
+  std::string text = read_text(path);
+  text = replaced(text, "M1_Nm = 20.0 ", "M1_Nm = 0.0 ");
+  text = replaced(text, "rate_noise_density = 1e-4", "rate_noise_density = 0.0");
+  text = replaced(text, "encoder_counts_per_rev = 262144", "encoder_counts_per_rev = 1073741824");
+  text = replaced(text, "record_every = 5", "record_every = 1");
+  tools::RunRequest req;
+  req.scene_path = path;
+  req.scene_text = text;
+  req.write_outputs = false;
+  req.progress = false;
+  nlohmann::json report;
+  std::string csv;
+  req.report_out = &report;
+  req.csv_out = &csv;
+  ASSERT_EQ(tools::run_scene(req), 0);
+  std::vector<double> alpha;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    const auto a = line.find(','), b = line.find(',', a + 1);
+    alpha.push_back(std::stod(line.substr(a + 1, b - a - 1)));
+  }
+  ASSERT_GT(alpha.size(), 4600u);
+  // Rows at t = (k + 1) T: the step acts from tick 3000; fit from 3.05 s to 4.5 s.
+  const int n = 6, first = 3050, last = 4500, rows = last - first - n;
+  Eigen::MatrixXd M(rows, n + 1);
+  Eigen::VectorXd rhs(rows);
+  for (int k = 0; k < rows; ++k) {
+    for (int i = 0; i < n; ++i) M(k, i) = alpha[static_cast<std::size_t>(first + k + i)];
+    M(k, n) = 1.0;
+    rhs(k) = alpha[static_cast<std::size_t>(first + k + n)];
+  }
+  const Eigen::VectorXd a = M.colPivHouseholderQr().solve(rhs);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) C(0, i) = a(n - 1 - i);
+  for (int i = 1; i < n; ++i) C(i, i - 1) = 1.0;
+  const Eigen::VectorXcd z = dynamics::eigenvalues(C);
+  std::vector<std::complex<double>> s;
+  for (Eigen::Index i = 0; i < z.size(); ++i)
+    if (std::abs(z(i)) > 1e-6) s.push_back(std::log(z(i)) / 1e-3);
+  const nlohmann::json& f = report["figures"];
+  const std::complex<double> sampled(-f["nutation_decay_rate_per_s_predicted_sampled"].get<double>(),
+                                     f["nutation_frequency_rad_s_predicted_sampled"].get<double>());
+  const std::complex<double> continuous(-f["nutation_decay_rate_per_s_predicted"].get<double>(),
+                                        f["nutation_frequency_rad_s_predicted"].get<double>());
+  const std::complex<double> measured = analysis::nearest_root(s, sampled);
+  std::printf("  identified %.9f%+.9fi, sampled %.9f%+.9fi, continuous %.9f%+.9fi\n", measured.real(),
+              measured.imag(), sampled.real(), sampled.imag(), continuous.real(), continuous.imag());
+  EXPECT_NEAR(measured.real() / sampled.real(), 1.0, 1e-5);
+  EXPECT_NEAR(measured.imag() / sampled.imag(), 1.0, 1e-5);
+  EXPECT_GT(std::fabs(measured.real() / continuous.real() - 1.0), 5e-3);
+  EXPECT_GT(std::fabs(measured.imag() / continuous.imag() - 1.0), 2e-3);
+}
+
+// (d) The shipped scenes as they are. Two effects the linear prediction does not hold, both measured here by
+// switching each off: the seeded rate noise (1e-4 rad/s/√Hz; the nutation decays 17× over the 1.5 s window
+// and the noise-driven motion weighs on the last extrema) moves the measured decay by 0.9 % (1.907 with,
+// 1.924 without); the 20 N m step carries β from 0 to 0.08 rad during the window, and H cos β with I(β)
+// lowers the frequency by 0.1 %. Bounds: decay 1.5 %, frequency 1.5e-3 — and in both the sampled
+// prediction is the closer one (continuous: 2.0 %, 1.7e-3). On the moving base (ship motion, and its
+// recording) the base's rates add to the gimbals' and the measured frequency falls by a further 0.05 %:
+// 1.61e-3 from the sampled root there, below the continuous root's 1.27e-3 (the two shifts point the same
+// way as the continuous root's error); bound 2e-3, the decay still closer to the sampled root.
+TEST(PowerStabilizerSampled, ShippedScenesAreCloserToTheSampledPrediction) {
+  for (const char* name : {"power-stabilizer", "power-stabilizer-ship-motion", "power-stabilizer-recorded-motion"}) {
+    SCOPED_TRACE(name);
+    const std::string path = kScenes + name + ".toml";
+    const nlohmann::json f = figures_of(path, read_text(path));
+    ASSERT_TRUE(f["nutation_decay_rate_per_s"].is_number()) << f.dump();
+    const double decay = f["nutation_decay_rate_per_s"].get<double>(), freq = f["nutation_frequency_rad_s"].get<double>();
+    const double decay_s = f["nutation_decay_rate_per_s_predicted_sampled"].get<double>();
+    const double freq_s = f["nutation_frequency_rad_s_predicted_sampled"].get<double>();
+    const double decay_c = f["nutation_decay_rate_per_s_predicted"].get<double>();
+    const double freq_c = f["nutation_frequency_rad_s_predicted"].get<double>();
+    std::printf("  %s: decay %.5f (sampled %.5f %+.2e, continuous %.5f %+.2e), freq %.4f (sampled %.4f %+.2e, "
+                "continuous %.4f %+.2e)\n", name, decay, decay_s, decay / decay_s - 1.0, decay_c, decay / decay_c - 1.0,
+                freq, freq_s, freq / freq_s - 1.0, freq_c, freq / freq_c - 1.0);
+    const bool base_at_rest = std::string(name) == "power-stabilizer";
+    EXPECT_LT(rel(decay, decay_s), 1.5e-2);
+    EXPECT_LT(rel(freq, freq_s), base_at_rest ? 1.5e-3 : 2e-3);
+    EXPECT_LT(rel(decay, decay_s), rel(decay, decay_c));
+    if (base_at_rest) EXPECT_LT(rel(freq, freq_s), rel(freq, freq_c));
+    EXPECT_LT(f["sampled_loop_max_abs_z"].get<double>(), 1.0);
+  }
+}
+
+// (e) The shipped scene with the rotor 10× faster (nutation 1155 rad/s at the 1 kHz law): (14.25) accepts
+// the gains (gain margin 29), the sampled loop with one tick of latency does not (|z| = 1.00041: the rate
+// damping lags the nutation by ~100°); without the latency it is stable again.
+TEST(PowerStabilizerSampled, CheckRefusesALoopStableOnlyInContinuousTime) {
+  const std::string path = kScenes + "power-stabilizer.toml";
+  const std::string fast = replaced(read_text(path), "rpm = 19098.6 ", "rpm = 190986.0 ");
+  std::vector<std::string> problems;
+  EXPECT_EQ(tools::check_scene_text(fast, "fast", &problems), 2);
+  std::string all;
+  for (const std::string& p : problems) all += p + "\n";
+  std::printf("%s", all.c_str());
+  EXPECT_NE(all.find("[controller] k1"), std::string::npos) << all;
+  EXPECT_NE(all.find("stable in continuous time but unstable"), std::string::npos) << all;
+  EXPECT_NE(all.find("|z| = 1.0004"), std::string::npos) << all;
+  problems.clear();
+  EXPECT_EQ(tools::check_scene_text(replaced(fast, "latency_ticks = 1", "latency_ticks = 0"), "fast-no-latency", &problems), 0)
+      << (problems.empty() ? "" : problems.front());
+}
+
+}  // namespace gyrostab::power_stabilizer_sampled_test
