@@ -247,7 +247,9 @@ TEST(PowerStabilizerSampled, ShippedScenesAreCloserToTheSampledPrediction) {
     EXPECT_LT(rel(decay, decay_s), 1.5e-2);
     EXPECT_LT(rel(freq, freq_s), base_at_rest ? 1.5e-3 : 2e-3);
     EXPECT_LT(rel(decay, decay_s), rel(decay, decay_c));
-    if (base_at_rest) EXPECT_LT(rel(freq, freq_s), rel(freq, freq_c));
+    if (base_at_rest) {
+      EXPECT_LT(rel(freq, freq_s), rel(freq, freq_c));
+    }
     EXPECT_LT(f["sampled_loop_max_abs_z"].get<double>(), 1.0);
   }
 }
