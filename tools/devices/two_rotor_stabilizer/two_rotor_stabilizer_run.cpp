@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "sim/analysis/half_step_window.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/two_rotor_stabilizer/two_rotor_stabilizer_scene.hpp"
+#include "tools/run/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {
@@ -59,7 +61,8 @@ class TwoRotorRun {
                 s.controller.law.k1, s.controller.law.dK1},
         single_rk_(single_),
         single_x_(SingleRotor::State::Zero()),
-        gain_margin_(firmware::two_rotor_gain_scale_max(s.controller.law)) {}
+        gain_margin_(firmware::two_rotor_gain_scale_max(s.controller.law)),
+        window_(s.loop.ticks() / 2, std::max<std::int64_t>(1, static_cast<std::int64_t>(1.0 / s.loop.tick_s()))) {}
 
   void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
   void actuate(const msg::ActuatorFrame& cmd) {
@@ -75,7 +78,9 @@ class TwoRotorRun {
       for (int i = 0; i < s_.loop.substeps; ++i) single_rk_.step(t + i * h, h, single_x_);
       single_peak_ = std::max(single_peak_, std::fabs(single_x_[SingleRotor::Model::kAlpha]));
     }
+    window_.before_tick(tick, plant_.state(), plant_.held_inputs());
     plant_.advance(tick);
+    window_.after_tick(tick, plant_.state());
     alpha_peak_ = std::max(alpha_peak_, std::fabs(plant_.value(Axis::kAlpha)));
     gamma_peak_ = std::max(gamma_peak_, std::fabs(plant_.value(Axis::kGamma)));
     ticks_ = tick + 1;
@@ -119,6 +124,19 @@ class TwoRotorRun {
     return f;
   }
 
+  // report.json "error_estimate": one second from the middle of the run.
+  nlohmann::json error_estimate() const {
+    const auto apply = [](Plant::Dynamics& m, const Plant::HeldInputs& in) {
+      m.M1K = in.M1K;
+      m.M2K = in.M2K;
+    };
+    return error_estimate_json<8>(
+        window_.estimate<dynamics::Rk4>(plant_.dynamics(), apply, s_.loop.tick_ns, s_.loop.substeps, 4),
+        {"alpha_rad", "gamma_rad", "beta1_rad", "beta2_rad", "alpha_rate_rad_s", "gamma_rate_rad_s", "beta1_rate_rad_s",
+         "beta2_rate_rad_s"},
+        "none watched: the motors and the dampers act");
+  }
+
  private:
   bool frame() const { return s_.plant.kind == plants::TwoRotorPlantKind::kGyroFrame; }
 
@@ -131,6 +149,7 @@ class TwoRotorRun {
   msg::ActuatorFrame last_{};
   double alpha_peak_{0.0}, gamma_peak_{0.0}, single_peak_{0.0}, link_{0.0}, link_peak_{0.0};
   std::int64_t ticks_{0};
+  analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
 };
 
 struct TwoRotorTraits {
