@@ -215,6 +215,80 @@ TEST(RecordedMotion, ShippedRecordedSceneRunsLikeItsGeneratorScene) {
   EXPECT_LE(worst, 2 * 2 * M_PI / (1 << 18));
 }
 
+// The coning platform (Magnus §15.5) driven by sim/motion_records/coning-vibration.csv, written by
+// `motion-record --step-s 0.004 --duration-s 12` from coning-p-gyro-planar-vibration.toml: the record's
+// interpolant against that scene's generator (Φ = 0.01 rad at 5 Hz: |ω⁽³⁾| = Φν⁴ ≈ 1e4 rad/s⁴, so the h³ term
+// of the bound, 4.1e-5 rad/s with the end intervals' constant, dominates), then the two closed-loop runs over the record's 12 s.
+TEST(RecordedMotion, ConingRecordReplaysItsGeneratorWithinTheInterpolationBound) {
+  tools::SceneReader rg, rr;
+  const auto gen = read_scene(kScenes + "coning-p-gyro-planar-vibration.toml", rg);
+  const auto rec = read_scene(kScenes + "coning-recorded-motion.toml", rr);
+  ASSERT_TRUE(gen && rec);
+  ASSERT_NE(gen->base_motion(), nullptr);
+  const motion::SceneBaseMotion& g = *gen->base_motion();
+  const motion::SceneBaseMotion& r = *rec->base_motion();
+  ASSERT_EQ(r.kind, motion::BaseMotionKind::kRecorded);
+  const double h = 0.004;
+  const DerivativeBounds d = derivative_bounds(g, 0.0, 12.0);
+  const Errors e = interpolation_errors(r.recorded, g, 0.0, 12.0, g.g());
+  const double bw = value_bound(h, d.w3, d.w4), bdw = rate_bound(h, d.w3, d.w4), bf = value_bound(h, d.f3, d.f4);
+  std::printf("coning record, h = %.3g s: |dw| %.3g rad/s (bound %.3g)  |d dw/dt| %.3g rad/s2 (bound %.3g)  "
+              "|df| %.3g m/s2 (bound %.3g)\n", h, e.w, bw, e.dw, bdw, e.f, bf);
+  EXPECT_LE(e.w, bw);
+  EXPECT_LE(e.dw, bdw);
+  EXPECT_LE(e.f, bf);
+  EXPECT_GT(e.w, 0.0);  // a record, not the generator
+}
+
+// Closed loop: the rate error ε_ω (≤ the bound above) enters the P-gyro as an input rate, which it reads
+// with its static scale H/c2 (|G(iν)| = 1.01 of it at ν/ω_n = 0.1): |Δβ| ≤ 1.1 (H/c2) ε_ω plus what the
+// platform's own response adds, the same size again through the loop (|S(iν)| = 1.01) — tolerance
+// 2.2 (H/c2) ε_ω. The loop nulls the reading, so the platform turns by the integrated rate error at most:
+// |Δφ| ≤ T ε_ω (T = 12 s; a worst case: the error oscillates at ν and mostly cancels).
+TEST(RecordedMotion, ConingRecordedSceneRunsLikeItsGeneratorScene) {
+  const auto run = [](const std::string& path, std::int64_t ticks) {
+    tools::RunRequest req;
+    req.scene_path = path;
+    req.write_outputs = false;
+    req.progress = false;
+    req.ticks = ticks;
+    std::string csv;
+    req.csv_out = &csv;
+    EXPECT_EQ(tools::run_scene(req), 0) << path;
+    return csv;
+  };
+  const std::string a = run(kScenes + "coning-p-gyro-planar-vibration.toml", 12000);
+  const std::string b = run(kScenes + "coning-recorded-motion.toml", -1);
+  std::istringstream sa(a), sb(b);
+  std::string la, lb;
+  std::getline(sa, la);
+  std::getline(sb, lb);
+  ASSERT_EQ(la, lb);  // t_s, phi_rad, phi_rate_rad_s, platform_rate_rad_s, beta_rad, ...
+  double dphi = 0.0, dbeta = 0.0;
+  int rows = 0;
+  while (std::getline(sa, la) && std::getline(sb, lb)) {
+    double ta, pa, pra, wa, ba, tb, pb, prb, wb, bb;
+    ASSERT_EQ(std::sscanf(la.c_str(), "%lf,%lf,%lf,%lf,%lf", &ta, &pa, &pra, &wa, &ba), 5);
+    ASSERT_EQ(std::sscanf(lb.c_str(), "%lf,%lf,%lf,%lf,%lf", &tb, &pb, &prb, &wb, &bb), 5);
+    ASSERT_EQ(ta, tb);
+    dphi = std::max(dphi, std::abs(pa - pb));
+    dbeta = std::max(dbeta, std::abs(ba - bb));
+    ++rows;
+  }
+  tools::SceneReader rg;
+  const auto gen = read_scene(kScenes + "coning-p-gyro-planar-vibration.toml", rg);
+  ASSERT_TRUE(gen);
+  const DerivativeBounds d = derivative_bounds(*gen->base_motion(), 0.0, 12.0);
+  const double eps_w = value_bound(0.004, d.w3, d.w4);  // as in the test above (4.1e-5 rad/s)
+  const double H_over_c2 = 0.025 / 0.2;
+  std::printf("coning closed loop over %d rows: max |d phi| %.3g rad (tol %.3g), |d beta| %.3g rad (tol %.3g)\n",
+              rows, dphi, 12.0 * eps_w, dbeta, 2.2 * H_over_c2 * eps_w);
+  EXPECT_GT(rows, 1000);
+  EXPECT_LE(dphi, 12.0 * eps_w);
+  EXPECT_LE(dbeta, 2.2 * H_over_c2 * eps_w);
+  EXPECT_GT(dbeta, 0.0);
+}
+
 // --- refusals ----------------------------------------------------------------------------------------------
 
 const std::string kHeader = "t [s], q0, q1, q2, q3, wx [rad/s], wy [rad/s], wz [rad/s], fx [m/s^2], fy [m/s^2], fz [m/s^2]\n";
