@@ -7,7 +7,9 @@
 // Base: yaw ψ_b = Φ cos δ sin νt about base axis 3, roll φ_b = Φ sin δ sin(νt − ε) about base axis 1
 // (motion::PrescribedBaseRotation: R = Rz(ψ_b) Rx(φ_b)), so ω_b = (φ_b', ψ_b' sin φ_b, ψ_b' cos φ_b): a
 // vibration of amplitude Φ about an axis at δ from axis 3 towards axis 1, planar for ε = 0, conical
-// (elliptic) otherwise. The base's attitude is periodic: it has no mean rotation.
+// (elliptic) otherwise. The base's attitude is periodic: it has no mean rotation. Or the base motion a scene's
+// [motion] block chooses (motion::SceneBaseMotion: prescribed yaw/pitch/roll, or a recorded motion), of which
+// only ω_b and ω_b' act (the platform reads no specific force).
 // Platform: turned by φ about the common axis 3 relative to the base; its rate in platform axes
 //   ω_p = (cφ ω_b1 + sφ ω_b2, −sφ ω_b1 + cφ ω_b2, ω_b3 + φ')
 //   ω_p' = (cφ ω_b1' + sφ ω_b2' + φ' ω_p2, −sφ ω_b1' + cφ ω_b2' − φ' ω_p1, ω_b3' + φ'')   (component derivatives)
@@ -31,6 +33,7 @@
 #include <numbers>
 
 #include "sim/motion/prescribed_base_rotation.hpp"
+#include "sim/motion/scene_base_motion.hpp"
 #include "sim/sensors/single_axis_gyro_coning.hpp"
 
 namespace gyrostab::models {
@@ -69,7 +72,17 @@ class ConingPlatform {
     double voltage{0.0};  // V [V]
   };
 
-  explicit ConingPlatform(const ConingPlatformParams& p = {}) : p_(p), base_(p.base()) {}
+  explicit ConingPlatform(const ConingPlatformParams& p = {}) : p_(p), base_(generated(p)) {}
+  // The base moved by `base` instead (a scene's [motion]: prescribed or recorded; only ω_B, ω̇_B act).
+  ConingPlatform(const ConingPlatformParams& p, const motion::SceneBaseMotion& base) : p_(p), base_(base) {}
+
+  // The parameters' vibration as a scene base motion (the same bits as PrescribedBaseRotation alone).
+  static motion::SceneBaseMotion generated(const ConingPlatformParams& p) {
+    motion::SceneBaseMotion m;
+    m.kind = motion::BaseMotionKind::kPrescribed;
+    m.prescribed = p.base();
+    return m;
+  }
 
   Inputs inputs{};  // held between steps
 
@@ -108,11 +121,11 @@ class ConingPlatform {
   }
   void project(State&) const {}
 
-  const motion::PrescribedBaseRotation<1>& base() const { return base_; }
+  const motion::SceneBaseMotion& base() const { return base_; }
 
  private:
   ConingPlatformParams p_;
-  motion::PrescribedBaseRotation<1> base_;
+  motion::SceneBaseMotion base_;
 };
 
 }  // namespace gyrostab::models

@@ -17,6 +17,8 @@
 // State x = q_WF, the vehicle attitude (vehicle axes to inertial axes, Eigen's (x, y, z, w)) [-], integrated
 // from the prescribed body rates w_WF_F [rad/s] of sim/motion/prescribed_base_rotation.hpp (the same
 // a^F = Rz Ry Rx); the gimbal angles are computed from the integrated attitude, not from the Euler angles.
+// Or from the rates of a scene's [motion] (sim/motion/scene_base_motion.hpp: prescribed, or a recorded motion
+// whose attitude q_WB is the vehicle's q_WF); the Euler angles are then read from its attitude (ZYX).
 // Parameters: the mounting configuration; the vehicle motion (angles [rad], rates [rad/s], harmonics).
 // Assumptions (book): the rotor axis is exactly fixed in inertial space (no drift, no nutation, no gimbal
 // friction: a free gyro whose H is large); ideal pick-offs; the vehicle angles are the flight-mechanics
@@ -30,12 +32,14 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string_view>
 
 #include "sim/dynamics/quaternion.hpp"
 #include "sim/motion/prescribed_base_rotation.hpp"
+#include "sim/motion/scene_base_motion.hpp"
 
 namespace gyrostab::models {
 
@@ -86,6 +90,17 @@ inline GimbalAngles gimbal_angles(const Eigen::Matrix3d& R_WF, const Eigen::Matr
 struct PositionGyroGimbalErrorParams {
   GimbalMounting mounting{GimbalMounting::k321};
   motion::PrescribedBaseRotation<2> vehicle{};  // ψ(t), ϑ(t), φ(t) of (12.2)
+  bool from_motion{false};                      // the vehicle moves by `motion` instead
+  motion::SceneBaseMotion motion{};
+
+  dynamics::Vec3 rate(double t) const { return from_motion ? motion(t).w_B : vehicle(t).w_B; }  // w_WF_F
+  dynamics::Quat attitude(double t) const { return from_motion ? motion.attitude(t) : vehicle.attitude(t); }
+  // (φ, ϑ, ψ) [rad]: the generator's angles, or those of the motion's attitude R = Rz(ψ) Ry(ϑ) Rx(φ).
+  std::array<double, 3> euler(double t) const {
+    if (!from_motion) return {vehicle.roll(t).angle, vehicle.pitch(t).angle, vehicle.yaw(t).angle};
+    const Eigen::Matrix3d R = motion.attitude(t).toRotationMatrix();
+    return {std::atan2(R(2, 1), R(2, 2)), -std::asin(std::clamp(R(2, 0), -1.0, 1.0)), std::atan2(R(1, 0), R(0, 0))};
+  }
 };
 
 // The vehicle attitude kinematics dq_WF/dt = ½ q_WF ⊗ (0, w_WF_F) under the prescribed rates, and the
@@ -105,14 +120,14 @@ class PositionGyroGimbalError {
 
   // The attitude at t from the Euler angles (the start of the integration).
   State initial_state(double t) const {
-    const dynamics::Quat q = p_.vehicle.attitude(t);
+    const dynamics::Quat q = p_.attitude(t);
     State x;
     x << q.x(), q.y(), q.z(), q.w();
     return x;
   }
 
   void derivative(double t, const State& x, State& dx) const {
-    dynamics::quaternion_rate(x, p_.vehicle(t).w_B, dx);
+    dynamics::quaternion_rate(x, p_.rate(t), dx);
   }
   // RK4 does not keep |q| = 1; the drift per step is far below the cheap projection's validity.
   void project(State& x) const { dynamics::renormalize_cheap(x); }

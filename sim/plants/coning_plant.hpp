@@ -1,6 +1,7 @@
 // The coning platform as a scene runs it (Magnus §15.5; sim/models/coning_platform.hpp): a platform on a
 // vibrating base, turned about its axis 3 by a geared servo at the held drive voltage, carrying a P- or
-// I-gyro with its input axis along the platform's axis 3; integrated by RK4 with the scene's sub-steps.
+// I-gyro with its input axis along the platform's axis 3; integrated by RK4 with the scene's sub-steps. The base
+// moves by the platform's vibration generator or by the scene's [motion] (prescribed, recorded).
 // Start: at rest relative to the base (φ = φ' = 0), the gyro at β = β' = 0.
 //
 // State: [φ (rad), φ' (rad/s), β (rad), β' (rad/s)] (named accessors below). Input (ActuatorFrame):
@@ -31,6 +32,10 @@ namespace gyrostab::plants {
 struct ConingPlantParams {
   models::ConingPlatformParams platform{};
   double voltage_limit{10.0};  // the drive's supply: |V| ≤ this [V]
+  // The scene's [motion] (sim/motion/scene_base_motion.hpp) when it moves the base instead of the platform's
+  // own vibration generator; with `from_motion` false the base is ConingPlatform::generated(platform).
+  bool from_motion{false};
+  motion::SceneBaseMotion base{};
 };
 
 class ConingPlant {
@@ -43,7 +48,10 @@ class ConingPlant {
   };
 
   ConingPlant(const ConingPlantParams& p, const PlantTiming& t)
-      : p_(p), t_(t), model_(p.platform), integ_(model_), driver_(integ_, t.tick_ns, t.substeps) {
+      : p_(p),
+        t_(t),
+        model_(p.from_motion ? Model(p.platform, p.base) : Model(p.platform)),
+        integ_(model_), driver_(integ_, t.tick_ns, t.substeps) {
     x_ = Model::make_state(0.0, 0.0, 0.0, 0.0);
   }
 

@@ -1,6 +1,7 @@
 // A free two-gimbal position gyro on a yawing, pitching, rolling vehicle, as a scene runs it (Magnus §12.1,
 // (12.2)-(12.20)): the vehicle attitude of sim/models/position_gyro_gimbal_error.hpp integrated by RK4 with
-// the scene's sub-steps from the prescribed rates, and the gimbal pick-offs read from it. The gyro has no
+// the scene's sub-steps from the prescribed rates (or a scene's [motion]: prescribed, recorded), and the gimbal
+// pick-offs read from it. The gyro has no
 // torquers and no brake: the controller's commands, the safe state's brake included, do not act.
 //
 // State: q_WF (x, y, z, w) [-] (named accessors below). Inputs: none.
@@ -12,6 +13,7 @@
 // tests/determinism and tests/alloc.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -55,10 +57,11 @@ class GimbalErrorPlant {
     const double t = time_s(tick);
     f.gimbal_angle_rad[msg::kAxis1] = wrap_angle(angles_.alpha);
     f.gimbal_angle_rad[msg::kAxis2] = angles_.beta;
-    f.carrier_angle_rad[msg::kRoll] = wrap_angle(p_.gyro.vehicle.roll(t).angle);
-    f.carrier_angle_rad[msg::kPitch] = wrap_angle(p_.gyro.vehicle.pitch(t).angle);
-    f.carrier_angle_rad[msg::kYaw] = wrap_angle(p_.gyro.vehicle.yaw(t).angle);
-    const dynamics::Vec3 w = p_.gyro.vehicle(t).w_B;
+    const std::array<double, 3> e = p_.gyro.euler(t);
+    f.carrier_angle_rad[msg::kRoll] = wrap_angle(e[0]);
+    f.carrier_angle_rad[msg::kPitch] = wrap_angle(e[1]);
+    f.carrier_angle_rad[msg::kYaw] = wrap_angle(e[2]);
+    const dynamics::Vec3 w = p_.gyro.rate(t);
     f.carrier_rate_rad_s[msg::kRoll] = w.x();
     f.carrier_rate_rad_s[msg::kPitch] = w.y();
     f.carrier_rate_rad_s[msg::kYaw] = w.z();

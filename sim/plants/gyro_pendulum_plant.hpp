@@ -3,7 +3,9 @@
 // from sim/motion/earth_vehicle.hpp, one sample per tick at each end (the end's LEFT limit, so a manoeuvre
 // corner on a tick boundary is exact: sim/motion/corner_clock.hpp), linear in between
 // (motion::SampledReference); the reference trihedron is the azimuth-free one (12.52), with the raw specific
-// force (the geocentric vertical). The pendulum, by the scene's model:
+// force (the geocentric vertical). Or, pivot = Kepler orbit (Chelnokov §4), the suspension point in free flight
+// on sim/motion/kepler_orbit.hpp's ellipse, sampled the same way in its orbital trihedron (specific force
+// exactly 0: the rigid body model only, the small-angle form is written for a pivot on the Earth's sphere). The pendulum, by the scene's model:
 //   magnus      small-angle (12.55)-(12.58), sim/models/gyro_pendulum_magnus.hpp; integrator gyro-exponential
 //               (the nutation carried exactly: h ω^N up to 0.8·2π) or rk4
 //   rigid-body  the full 3-D Newton–Euler body spinning at H/C, sim/models/schuler_pendulum.hpp; integrator
@@ -25,7 +27,9 @@
 // tests/alloc/scene_alloc_test.cpp.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <complex>
 #include <cstdint>
 #include <numbers>
@@ -52,9 +56,12 @@ namespace gyrostab::plants {
 enum class GyroPendulumModel { kMagnus, kRigidBody };
 enum class GyroPendulumIntegrator { kGyroExponential, kRk4, kStrang, kYoshida4 };
 enum class GyroPendulumStart { kEquilibrium, kVertical };
+enum class GyroPendulumPivot { kEarthVehicle, kKeplerOrbit };
 
 struct GyroPendulumPlantParams {
   motion::VehicleMotionParams vehicle{.start = {.latitude = std::numbers::pi / 180.0 * 50.0}};
+  GyroPendulumPivot pivot{GyroPendulumPivot::kEarthVehicle};
+  motion::KeplerOrbitParams orbit{};  // pivot = kKeplerOrbit
   GyroPendulumModel model{GyroPendulumModel::kMagnus};
   GyroPendulumIntegrator integrator{GyroPendulumIntegrator::kGyroExponential};
   models::GyroPendulumMagnusParams gyro{.H = 0.0};  // no spin unless the scene gives one: a physical pendulum
@@ -80,6 +87,7 @@ class GyroPendulumPlant {
       : p_(p),
         t_(t),
         vehicle_(motion::make_vehicle(p.vehicle)),
+        orbit_(p.orbit),
         magnus_(p.gyro, motion::SampledReference{}),
         body_(body_params(p.gyro), motion::SampledReference{}),
         gx_(magnus_),
@@ -100,7 +108,7 @@ class GyroPendulumPlant {
                sensors::SensorNoise({p.rate_noise_density, 0.0, 0.0}, t.tick_s())},
         rng_{random::SeededRng(t.seed, kTilt1Stream), random::SeededRng(t.seed, kTilt2Stream),
              random::SeededRng(t.seed, kRate1Stream), random::SeededRng(t.seed, kRate2Stream)} {
-    current_ = sample(vehicle_.sample_ns(0));
+    current_ = kepler() ? orbit_sample(0) : sample(vehicle_.sample_ns(0));
     Cplx z0(p.alpha0, p.beta0), dz0(0.0, 0.0);
     if (p.start == GyroPendulumStart::kEquilibrium) {
       z0 += oracles::velocity_error(p.gyro.H, k_, p.gyro.R, {current_.v_Z.x(), current_.v_Z.y()});
@@ -140,7 +148,7 @@ class GyroPendulumPlant {
     ref.t0 = 1e-9 * static_cast<double>(tick * t_.tick_ns);  // = SubstepDriver's t0
     ref.h = t_.tick_s();
     ref.s0 = current_;
-    ref.s1 = sample(vehicle_.sample_left_ns(t1_ns));
+    ref.s1 = kepler() ? orbit_sample(t1_ns) : sample(vehicle_.sample_left_ns(t1_ns));
     if (magnus()) {
       magnus_.reference() = ref;
     } else {
@@ -166,7 +174,7 @@ class GyroPendulumPlant {
   void end_tick(std::int64_t tick) {
     const std::int64_t t1_ns = (tick + 1) * t_.tick_ns;
     const motion::SampledReference& ref = magnus() ? magnus_.reference() : body_.reference();
-    current_ = corners_.corner_at(t1_ns) ? sample(vehicle_.sample_ns(t1_ns)) : ref.s1;
+    current_ = !kepler() && corners_.corner_at(t1_ns) ? sample(vehicle_.sample_ns(t1_ns)) : ref.s1;
     observe();
   }
   void advance(std::int64_t tick) {
@@ -178,6 +186,7 @@ class GyroPendulumPlant {
   bool finite() const { return magnus() ? xm_.allFinite() : xb_.allFinite(); }
 
   bool magnus() const { return p_.model == GyroPendulumModel::kMagnus; }
+  bool kepler() const { return p_.pivot == GyroPendulumPivot::kKeplerOrbit; }
   // The case at the current tick's start: z = α + iβ [rad], z' [rad/s], and its tilt from the geocentric
   // vertical [rad] (|z| for the small-angle model, the exact angle for the rigid body).
   Cplx z() const { return z_; }
@@ -191,6 +200,7 @@ class GyroPendulumPlant {
   double latitude_rad() const { return latitude_; }
   double k_Nm_per_rad() const { return k_; }  // (12.57)
   const Magnus::State& magnus_state() const { return xm_; }
+  const Body::State& body_state() const { return xb_; }
   const Magnus& magnus_model() const { return magnus_; }
   MagnusInputs magnus_inputs() const { return {magnus_.reference(), magnus_.M1, magnus_.M2}; }
 
@@ -223,6 +233,15 @@ class GyroPendulumPlant {
     const motion::EarthParams& e = vehicle_.earth();
     return motion::suspension_from(v.azimuth_free, e.gravity / e.radius);
   }
+  // The orbit at t_ns: its orbital trihedron; speed = |v|, heading 0, latitude of the radius vector
+  // (declination in the inertial frame).
+  motion::SuspensionSample orbit_sample(std::int64_t t_ns) {
+    const motion::KeplerSample k = orbit_.sample(1e-9 * static_cast<double>(t_ns));
+    speed_ = k.v_I.norm();
+    heading_ = 0.0;
+    latitude_ = std::asin(std::clamp(k.p_I.z() / k.radius, -1.0, 1.0));
+    return motion::suspension_from(k.orbital, orbit_.params().gm / (k.radius * k.radius * k.radius));
+  }
   void observe() {
     if (magnus()) {
       z_ = Cplx(xm_[Magnus::kAlpha], xm_[Magnus::kBeta]);
@@ -245,6 +264,7 @@ class GyroPendulumPlant {
   const GyroPendulumPlantParams& p_;
   PlantTiming t_;
   motion::VehicleGenerator vehicle_;
+  motion::KeplerOrbit orbit_;
   Magnus magnus_;
   Body body_;
   dynamics::GyroscopicExponential<Magnus> gx_;

@@ -4,7 +4,7 @@
 Checks, each with `gyrostab run SCENE --transport target` (the image of BUILD/arm/m7, -icount shift=0):
   1. every image boots, takes its scene's configuration and steps in lockstep: a short run of every shipped
      scene of a device with a firmware controller gives a signals.csv identical byte for byte to the
-     in-process run of the same scene and seed (36 scenes, 18 images);
+     in-process run of the same scene and seed (39 scenes, 18 images);
   2. two whole scenes on the target are bit-identical to in process: the monorail (60 000 ticks) and the power
      stabilizer with DC drives (100 000 ticks, current loops at 10 kHz);
   3. the board's UART carries the same frames (--target-link uart): identical for 300 ticks;
@@ -57,10 +57,13 @@ SCENES = {
     "inertial-platform-single-axis": "inertial_platform",
     "inertial-platform-two-position-gyros": "inertial_platform",
     "schuler-gyro-pendulum": "gyro_pendulum",
+    "gyro-pendulum-kepler-orbit": "gyro_pendulum",
     "gimbal-error-heading-gyro-turn": "gimbal_error",
+    "gimbal-error-recorded-motion": "gimbal_error",
     "u-gyro-rate-table": "u_gyro",
     "coning-p-gyro-planar-vibration": "coning",
     "coning-i-gyro-conical-vibration": "coning",
+    "coning-recorded-motion": "coning",
     "foucault-declinometer-settling": "foucault_gyro",
     "foucault-inclinometer-settling": "foucault_gyro",
     "position-gyro-platform": "position_gyro_platform",

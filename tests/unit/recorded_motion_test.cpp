@@ -215,6 +215,133 @@ TEST(RecordedMotion, ShippedRecordedSceneRunsLikeItsGeneratorScene) {
   EXPECT_LE(worst, 2 * 2 * M_PI / (1 << 18));
 }
 
+// The coning platform (Magnus §15.5) driven by sim/motion_records/coning-vibration.csv, written by
+// `motion-record --step-s 0.01 --duration-s 60` from coning-p-gyro-planar-vibration.toml: the record's
+// interpolant against that scene's generator (Φ = 0.01 rad at 5 Hz: |ω⁽³⁾| = Φν⁴ ≈ 1e4 rad/s⁴, so the h³ term
+// of the bound, with the end intervals' constant, dominates), then the two closed-loop runs over 45 s.
+TEST(RecordedMotion, ConingRecordReplaysItsGeneratorWithinTheInterpolationBound) {
+  tools::SceneReader rg, rr;
+  const auto gen = read_scene(kScenes + "coning-p-gyro-planar-vibration.toml", rg);
+  const auto rec = read_scene(kScenes + "coning-recorded-motion.toml", rr);
+  ASSERT_TRUE(gen && rec);
+  ASSERT_NE(gen->base_motion(), nullptr);
+  const motion::SceneBaseMotion& g = *gen->base_motion();
+  const motion::SceneBaseMotion& r = *rec->base_motion();
+  ASSERT_EQ(r.kind, motion::BaseMotionKind::kRecorded);
+  const double h = 0.01;
+  const DerivativeBounds d = derivative_bounds(g, 0.0, 60.0);
+  const Errors e = interpolation_errors(r.recorded, g, 0.0, 60.0, g.g());
+  const double bw = value_bound(h, d.w3, d.w4), bdw = rate_bound(h, d.w3, d.w4), bf = value_bound(h, d.f3, d.f4);
+  std::printf("coning record, h = %.3g s: |dw| %.3g rad/s (bound %.3g)  |d dw/dt| %.3g rad/s2 (bound %.3g)  "
+              "|df| %.3g m/s2 (bound %.3g)\n", h, e.w, bw, e.dw, bdw, e.f, bf);
+  EXPECT_LE(e.w, bw);
+  EXPECT_LE(e.dw, bdw);
+  EXPECT_LE(e.f, bf);
+  EXPECT_GT(e.w, 0.0);  // a record, not the generator
+}
+
+// Closed loop: the rate error ε_ω (≤ the bound above) enters the P-gyro as an input rate, which it reads
+// with its static scale H/c2 (|G(iν)| = 1.01 of it at ν/ω_n = 0.1): |Δβ| ≤ 1.1 (H/c2) ε_ω plus what the
+// platform's own response adds, the same size again through the loop (|S(iν)| = 1.01) — tolerance
+// 2.2 (H/c2) ε_ω. The loop nulls the reading, so the platform turns by the integrated rate error at most:
+// |Δφ| ≤ T ε_ω (T = 45 s; a worst case: the error oscillates at ν and mostly cancels). And the drift figure
+// (the mean over whole periods) against the generator's: the record moves it by 2 ε_ω/Ω0 relative at most.
+TEST(RecordedMotion, ConingRecordedSceneRunsLikeItsGeneratorScene) {
+  nlohmann::json ra, rb;
+  const auto run = [](const std::string& path, nlohmann::json& report) {
+    tools::RunRequest req;
+    req.scene_path = path;
+    req.write_outputs = false;
+    req.progress = false;
+    std::string csv;
+    req.csv_out = &csv;
+    req.report_out = &report;
+    EXPECT_EQ(tools::run_scene(req), 0) << path;
+    return csv;
+  };
+  const std::string a = run(kScenes + "coning-p-gyro-planar-vibration.toml", ra);
+  const std::string b = run(kScenes + "coning-recorded-motion.toml", rb);
+  std::istringstream sa(a), sb(b);
+  std::string la, lb;
+  std::getline(sa, la);
+  std::getline(sb, lb);
+  ASSERT_EQ(la, lb);  // t_s, phi_rad, phi_rate_rad_s, platform_rate_rad_s, beta_rad, ...
+  double dphi = 0.0, dbeta = 0.0;
+  int rows = 0;
+  while (std::getline(sa, la) && std::getline(sb, lb)) {
+    double ta, pa, pra, wa, ba, tb, pb, prb, wb, bb;
+    ASSERT_EQ(std::sscanf(la.c_str(), "%lf,%lf,%lf,%lf,%lf", &ta, &pa, &pra, &wa, &ba), 5);
+    ASSERT_EQ(std::sscanf(lb.c_str(), "%lf,%lf,%lf,%lf,%lf", &tb, &pb, &prb, &wb, &bb), 5);
+    ASSERT_EQ(ta, tb);
+    dphi = std::max(dphi, std::abs(pa - pb));
+    dbeta = std::max(dbeta, std::abs(ba - bb));
+    ++rows;
+  }
+  tools::SceneReader rg;
+  const auto gen = read_scene(kScenes + "coning-p-gyro-planar-vibration.toml", rg);
+  ASSERT_TRUE(gen);
+  const DerivativeBounds d = derivative_bounds(*gen->base_motion(), 0.0, 60.0);
+  const double eps_w = value_bound(0.01, d.w3, d.w4);  // as in the test above
+  const double H_over_c2 = 0.025 / 0.2;
+  const double drift_a = ra["figures"]["drift_rate_rad_s"].get<double>();
+  const double drift_b = rb["figures"]["drift_rate_rad_s"].get<double>();
+  const double omega0 = 0.01 * 2 * M_PI * 5.0 * std::sqrt(0.5);  // Ω10 = Ω30 [rad/s]
+  std::printf("coning closed loop over %d rows: max |d phi| %.3g rad (tol %.3g), |d beta| %.3g rad (tol %.3g); "
+              "drift %.6g vs %.6g rad/s (rel %.3g, tol %.3g)\n",
+              rows, dphi, 45.0 * eps_w, dbeta, 2.2 * H_over_c2 * eps_w, drift_b, drift_a,
+              std::abs(drift_b / drift_a - 1), 2 * eps_w / omega0);
+  EXPECT_GT(rows, 1000);
+  EXPECT_LE(dphi, 45.0 * eps_w);
+  EXPECT_LE(dbeta, 2.2 * H_over_c2 * eps_w);
+  EXPECT_GT(dbeta, 0.0);
+  EXPECT_LE(std::abs(drift_b / drift_a - 1), 2 * eps_w / omega0);
+}
+
+// The heading gyro in a level turn (gimbal_error, Magnus §12.1) driven by sim/motion_records/heading-gyro-turn.csv
+// (`motion-record --step-s 0.5 --duration-s 600` of gimbal-error-heading-gyro-turn.toml). In the turn the body rates are constant
+// (ψ' sinφ, ψ' cosφ), so the Hermite rates are exact and the integrated attitude — the gimbal angles α, β — agrees
+// with the generator's to round-off (12 000 RK4 steps: 1e-12). The Euler angles the errors are measured against
+// come from the record's attitude, a cubic Hermite on q with exact slopes: ≤ h⁴ |q⁗|/384 = 0.5⁴ (|ω|/2)⁴/384
+// = 7.6e-11 rad (|ω| = 0.052 rad/s), so α − ψ and ψ within 2 × that.
+TEST(RecordedMotion, GimbalErrorRecordedSceneRunsLikeItsGeneratorScene) {
+  const auto run = [](const std::string& path) {
+    tools::RunRequest req;
+    req.scene_path = path;
+    req.write_outputs = false;
+    req.progress = false;
+    std::string csv;
+    req.csv_out = &csv;
+    EXPECT_EQ(tools::run_scene(req), 0) << path;
+    return csv;
+  };
+  const std::string a = run(kScenes + "gimbal-error-heading-gyro-turn.toml");
+  const std::string b = run(kScenes + "gimbal-error-recorded-motion.toml");
+  std::istringstream sa(a), sb(b);
+  std::string la, lb;
+  std::getline(sa, la);
+  std::getline(sb, lb);
+  ASSERT_EQ(la, lb);  // t_s, alpha_rad, beta_rad, alpha_error_rad, beta_error_rad, yaw_rad, ...
+  double dgimbal = 0.0, deuler = 0.0;
+  int rows = 0;
+  while (std::getline(sa, la) && std::getline(sb, lb)) {
+    double x[6], y[6];
+    ASSERT_EQ(std::sscanf(la.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &x[0], &x[1], &x[2], &x[3], &x[4], &x[5]), 6);
+    ASSERT_EQ(std::sscanf(lb.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &y[0], &y[1], &y[2], &y[3], &y[4], &y[5]), 6);
+    ASSERT_EQ(x[0], y[0]);
+    dgimbal = std::max({dgimbal, std::abs(x[1] - y[1]), std::abs(x[2] - y[2])});
+    deuler = std::max({deuler, std::abs(std::remainder(x[3] - y[3], 2 * M_PI)),
+                       std::abs(std::remainder(x[5] - y[5], 2 * M_PI))});
+    ++rows;
+  }
+  const double w = std::hypot(0.026179938779914941, 0.045344984105855454);  // the record's |ω| [rad/s]
+  const double q_bound = std::pow(0.5, 4) * std::pow(0.5 * w, 4) / 384;
+  std::printf("heading gyro over %d rows: max |d alpha|, |d beta| %.3g rad (tol 1e-12); |d (alpha - psi)|, "
+              "|d psi| %.3g rad (tol %.3g)\n", rows, dgimbal, deuler, 2 * q_bound);
+  EXPECT_GT(rows, 1000);
+  EXPECT_LE(dgimbal, 1e-12);
+  EXPECT_LE(deuler, 2 * q_bound);
+}
+
 // --- refusals ----------------------------------------------------------------------------------------------
 
 const std::string kHeader = "t [s], q0, q1, q2, q3, wx [rad/s], wy [rad/s], wz [rad/s], fx [m/s^2], fy [m/s^2], fz [m/s^2]\n";

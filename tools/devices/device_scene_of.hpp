@@ -52,6 +52,13 @@ class DeviceSceneOf final : public DeviceScene {
     return make_controller_port<typename Traits::Controller>(s_->controller);
   }
   std::vector<std::uint8_t> controller_config() const override { return config_bytes(s_->controller); }
+  const motion::SceneBaseMotion* base_motion() const override {
+    if constexpr (requires(const Scene& s) { Traits::base_motion(s); }) {
+      return Traits::base_motion(*s_);
+    } else {
+      return nullptr;
+    }
+  }
 
  private:
   std::unique_ptr<Scene> s_;

@@ -37,7 +37,8 @@ bool generated(const K& k) { return !recorded(k); }
 
 constexpr schema::Field<K> kFields[] = {
     F::choice("motion", "kind", kKinds,
-              "what moves the base: `harmonic_roll` (the device's [base] keys), `prescribed` (yaw, pitch, roll "
+              "what moves the base: `harmonic_roll` (the device's own generator: power_stabilizer's [base], "
+              "coning's [vibration], gimbal_error's [yaw], [pitch], [roll]), `prescribed` (yaw, pitch, roll "
               "each with one harmonic, a yaw rate, a lever arm: sim/motion/prescribed_base_rotation.hpp) or "
               "`recorded` (a motion file)",
               GS_CHOICE(kind)),
@@ -113,7 +114,7 @@ constexpr schema::Field<K> kFields[] = {
 };
 
 constexpr const char* kNote =
-    "A device whose base moves (`power_stabilizer`) can have it moved by a generator or by a recorded motion "
+    "A device whose base moves (`power_stabilizer`, `coning`, `gimbal_error`) can have it moved by a generator or by a recorded motion "
     "(sim/motion/scene_base_motion.hpp). `kind = \"recorded\"` reads a CSV of time, attitude, angular rate and "
     "specific force at scene read time; it is refused, with the file's line, when its times do not increase "
     "strictly, leave a gap over `max_gap_s`, hold a NaN/inf, lack or repeat a column, carry a non-unit "

@@ -17,7 +17,10 @@ extern const DeviceDescriptor kConing{
         "platform so that the gyro reads zero: the platform then turns relative to the base at minus the "
         "gyro's coning error. Shipped: `sim/scenes/coning-p-gyro-planar-vibration.toml` (the constructed case "
         "of (15.41): −3.08e-3 rad/s), `sim/scenes/coning-i-gyro-conical-vibration.toml` (an I-gyro under "
-        "conical vibration; planar would give none, (15.42)). Integrator: `rk4` (the only one).",
+        "conical vibration; planar would give none, (15.42)), `sim/scenes/coning-recorded-motion.toml` (the base "
+        "driven by a recorded motion, [base motion](#base-motion): `[motion] kind = \"harmonic_roll\"` — the "
+        "default — is the [vibration] generator; with `prescribed` or `recorded` the [vibration] keys stay the "
+        "nominal vibration of the step rules and the figures). Integrator: `rk4` (the only one).",
     .figures =
         "Figures, after settle_s over whole vibration periods (rounded to ticks): `drift_rate_rad_s` (the "
         "platform's turn relative to the base: the slope between its azimuth averaged over the first and the "

@@ -168,6 +168,8 @@ struct ConingTraits {
   using Binding = ConingRun;
   using Controller = tools::Controller;
   static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
+  // What moves the base (the vibration generator or the scene's [motion]): `gyrostab motion-record` writes it.
+  static const motion::SceneBaseMotion* base_motion(const Scene& s) { return &s.plant.base; }
   // The drive's supply on axis 1 (the only command); no torques.
   static hil::ActuatorLimits actuator_limits(const Scene& s) {
     hil::ActuatorLimits l;

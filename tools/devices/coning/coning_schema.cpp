@@ -6,6 +6,7 @@
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/dynamics/step_validation.hpp"
+#include "tools/devices/base_motion/base_motion_schema.hpp"
 #include "tools/devices/coning/coning_scene.hpp"
 #include "tools/run/controller_report.hpp"
 #include "tools/scene/schema.hpp"
@@ -98,6 +99,14 @@ constexpr schema::Rule<S> kRules[] = {
        if (ticks >= 10.0) return "";
        return "frequency_hz gives " + std::to_string(ticks) + " ticks per period, below 10: lower it or tick_us";
      }},
+    {"motion", "heave_amplitude_m",
+     "no translational vibration ([motion] heave/sway): the platform and its gyro read angular rates only",
+     [](const S& s) -> std::string {
+       return s.plant.base.vibration.count > 0
+                  ? "the coning platform reads angular rates only: a heave or sway does not reach it; remove "
+                    "heave_amplitude_m / sway_amplitude_m"
+                  : "";
+     }},
     {"loop", "tick_us", "the controller's start-up check (firmware/control/coning_null_law.hpp: Routh with the "
                         "drive lag, k_p max(T, τ_d) ≤ 0.5)",
      [](const S& s) -> std::string { return controller_refusal<Controller>(s); }},
@@ -106,6 +115,13 @@ constexpr schema::Rule<S> kRules[] = {
 // What the law takes from the plant: the reading's scale and kind, the drive.
 void derive(S& s) {
   s.controller.runtime.tick_period_ns = s.loop.tick_ns;
+  // [motion] kind = "harmonic_roll" (or no [motion]): the platform's own vibration generator moves the base.
+  s.plant.from_motion = true;
+  if (s.plant.base.kind == motion::BaseMotionKind::kHarmonicRoll) {
+    const int vibration = s.plant.base.vibration.count;  // kept for the rule that refuses it
+    s.plant.base = models::ConingPlatform::generated(s.plant.platform);
+    s.plant.base.vibration.count = vibration;
+  }
   const sensors::SingleAxisGyroParams& g = s.plant.platform.gyro.gyro;
   firmware::ConingNullParams& law = s.controller.law;
   law.integrating = !(g.c2 > 0.0);
@@ -121,6 +137,7 @@ std::unique_ptr<DeviceScene> read_coning(SceneReader& r) {
   auto s = std::make_unique<ConingScene>();
   s->loop = read_loop_config(r, "rk4", {"rk4"});
   schema::read(r, kFields, *s);
+  read_base_motion(r, s->plant.base, s->loop.duration_s);
   derive(*s);
   schema::check(r, kRules, *s);
   r.finish();
@@ -128,6 +145,6 @@ std::unique_ptr<DeviceScene> read_coning(SceneReader& r) {
   return make_coning_scene(std::move(s));
 }
 
-SceneDoc coning_doc() { return {{schema::document(kFields)}, schema::document(kRules)}; }
+SceneDoc coning_doc() { return {{schema::document(kFields), base_motion_doc()}, schema::document(kRules)}; }
 
 }  // namespace gyrostab::tools

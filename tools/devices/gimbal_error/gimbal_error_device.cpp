@@ -14,7 +14,11 @@ extern const DeviceDescriptor kGimbalError{
         "\"312\", \"213\", \"231\", \"123\", \"132\". No torquers: the controller "
         "(firmware/app/free_instrument_controller.hpp) only runs the loop. Shipped: "
         "`sim/scenes/gimbal-error-heading-gyro-turn.toml` (the heading gyro in a 30° banked level turn: "
-        "book 4.117°). Integrator: `rk4` (the only one).",
+        "book 4.117°), `sim/scenes/gimbal-error-recorded-motion.toml` (the same turn from a recorded motion: "
+        "[base motion](#base-motion); `[motion] kind = \"harmonic_roll\"`, the default, is the [yaw], [pitch], "
+        "[roll] generator; with `prescribed` or `recorded` the body rates and the attitude, and the Euler angles "
+        "read from it, are the motion's, and the [yaw], [pitch], [roll] keys stay the nominal motion of the step "
+        "rule and the level-turn figure). Integrator: `rk4` (the only one).",
     .figures =
         "Figures: `mounting`; `alpha_error` and `beta_error`, each the gimbal angle against the vehicle angle "
         "it nominally reads (`measures`: roll, pitch or yaw), with `max_abs_rad`, the signed `at_max_rad`, "

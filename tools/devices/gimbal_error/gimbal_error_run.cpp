@@ -47,6 +47,8 @@ struct ErrorPeak {
 
 // The heading gyro in a level turn at constant bank: the case of (12.13)-(12.15).
 bool level_turn_of_heading_gyro(const GimbalErrorScene& s) {
+  // [motion] prescribed replaces the [yaw], [pitch], [roll] motion; a record is taken to hold it.
+  if (s.plant.gyro.from_motion && s.plant.gyro.motion.kind == motion::BaseMotionKind::kPrescribed) return false;
   const auto still = [](const VehicleAngleKeys& k) { return k.rate == 0.0 && k.amplitude == 0.0; };
   return s.plant.gyro.mounting == models::GimbalMounting::k321 && still(s.pitch) && s.pitch.angle == 0.0 &&
          still(s.roll) && s.yaw.amplitude == 0.0 && s.yaw.rate != 0.0 && std::cos(s.roll.angle) > 0.0;
@@ -134,9 +136,9 @@ class GimbalErrorRun {
   // The meters at the start of tick `tick` (the state just integrated up to it).
   void measure(std::int64_t tick) {
     const double t = plant_.time_s(tick);
-    const auto& v = s_.plant.gyro.vehicle;
-    const double psi = v.yaw(t).angle, theta = v.pitch(t).angle, phi = v.roll(t).angle;
-    euler_ = {phi, theta, psi};
+    const auto& v = s_.plant.gyro;
+    euler_ = v.euler(t);
+    const double phi = euler_[0], theta = euler_[1], psi = euler_[2];
     const double alpha = plant_.alpha_rad(), beta = plant_.beta_rad();
     alpha_error_ = plants::wrap_angle(alpha - euler_[static_cast<std::size_t>(alpha_axis_)]);
     beta_error_ = plants::wrap_angle(beta - euler_[static_cast<std::size_t>(beta_axis_)]);
@@ -179,6 +181,8 @@ struct GimbalErrorTraits {
   using Binding = GimbalErrorRun;
   using Controller = tools::Controller;
   static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
+  // What moves the vehicle (the [yaw], [pitch], [roll] generator or the scene's [motion]), for motion-record.
+  static const motion::SceneBaseMotion* base_motion(const Scene& s) { return &s.plant.gyro.motion; }
 };
 
 }  // namespace

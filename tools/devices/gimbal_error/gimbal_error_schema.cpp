@@ -6,6 +6,7 @@
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/dynamics/step_validation.hpp"
+#include "tools/devices/base_motion/base_motion_schema.hpp"
 #include "tools/devices/gimbal_error/gimbal_error_scene.hpp"
 #include "tools/run/controller_report.hpp"
 #include "tools/scene/schema.hpp"
@@ -57,9 +58,18 @@ motion::PrescribedAngle<2> angle_of(const VehicleAngleKeys& k) {
   return a;
 }
 
-// A bound on |w_WF_F|: the sum of the Euler rates' bounds [rad/s].
+// A bound on |w_WF_F|: the sum of the Euler rates' bounds [rad/s]; with a [motion], the largest |ω_B| sampled
+// on 4096 intervals and, for a record, at its rows.
 double rate_bound(const S& s) {
   double w = 0.0;
+  if (s.plant.gyro.from_motion) {
+    const motion::SceneBaseMotion& m = s.plant.gyro.motion;
+    for (int k = 0; k <= 4096; ++k) w = std::fmax(w, m(s.loop.duration_s * k / 4096).w_B.norm());
+    if (m.kind == motion::BaseMotionKind::kRecorded && m.recorded.record() != nullptr) {
+      for (const dynamics::Vec3& x : m.recorded.record()->w_B) w = std::fmax(w, x.norm());
+    }
+    return w;
+  }
   for (const VehicleAngleKeys* k : {&s.yaw, &s.pitch, &s.roll}) {
     w += std::fabs(k->rate) + k->amplitude * 2.0 * std::numbers::pi / k->period;
   }
@@ -78,14 +88,40 @@ constexpr schema::Rule<S> kRules[] = {
            dynamics::check_step(dynamics::Method::kRk4, {"vehicle rotation", {0.0, w}}, h);
        return c.ok ? "" : c.message;
      }},
+    {"motion", "heave_amplitude_m",
+     "no translational vibration ([motion] heave/sway): the free gyro's rotor axis does not see it",
+     [](const S& s) -> std::string {
+       return s.plant.gyro.motion.vibration.count > 0
+                  ? "a heave or sway does not move the gimbals of a free gyro; remove heave_amplitude_m / "
+                    "sway_amplitude_m"
+                  : "";
+     }},
     {"loop", "tick_us", "the controller's start-up check (firmware/app/free_instrument_controller.hpp)",
      [](const S& s) -> std::string { return controller_refusal<Controller>(s); }},
 };
 
+// [motion] kind = "harmonic_roll" (the default): the [yaw], [pitch], [roll] generator moves the vehicle, and
+// `motion` holds the same motion (one harmonic per angle) for `gyrostab motion-record`.
 void derive(S& s) {
   s.plant.gyro.vehicle.yaw = angle_of(s.yaw);
   s.plant.gyro.vehicle.pitch = angle_of(s.pitch);
   s.plant.gyro.vehicle.roll = angle_of(s.roll);
+  motion::SceneBaseMotion& m = s.plant.gyro.motion;
+  s.plant.gyro.from_motion = m.kind != motion::BaseMotionKind::kHarmonicRoll;
+  if (!s.plant.gyro.from_motion) {
+    m.kind = motion::BaseMotionKind::kPrescribed;
+    const auto one = [](const motion::PrescribedAngle<2>& a) {
+      motion::PrescribedAngle<1> b;
+      b.offset = a.offset;
+      b.rate = a.rate;
+      b.harmonics[0] = a.harmonics[0];
+      b.count = a.count;
+      return b;
+    };
+    m.prescribed.yaw = one(s.plant.gyro.vehicle.yaw);
+    m.prescribed.pitch = one(s.plant.gyro.vehicle.pitch);
+    m.prescribed.roll = one(s.plant.gyro.vehicle.roll);
+  }
   s.controller.runtime.tick_period_ns = s.loop.tick_ns;
 }
 
@@ -95,6 +131,7 @@ std::unique_ptr<DeviceScene> read_gimbal_error(SceneReader& r) {
   auto s = std::make_unique<GimbalErrorScene>();
   s->loop = read_loop_config(r, "rk4", {"rk4"});
   schema::read(r, kFields, *s);
+  read_base_motion(r, s->plant.gyro.motion, s->loop.duration_s);
   derive(*s);
   schema::check(r, kRules, *s);
   r.finish();
@@ -103,7 +140,7 @@ std::unique_ptr<DeviceScene> read_gimbal_error(SceneReader& r) {
 }
 
 SceneDoc gimbal_error_doc() {
-  return {{schema::document(kFields)}, schema::document(kRules)};
+  return {{schema::document(kFields), base_motion_doc()}, schema::document(kRules)};
 }
 
 }  // namespace gyrostab::tools

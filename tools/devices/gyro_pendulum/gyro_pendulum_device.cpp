@@ -15,8 +15,12 @@ extern const DeviceDescriptor kGyroPendulum{
         "absolute rotation about the vertical: Magnus (12.52), Chelnokov (2.5)). The angles α, β are the "
         "case's small rotations about F1, F2 (rotor axis ≈ (β, −α, 1) in F). The firmware controller "
         "(firmware/app/gyro_pendulum_controller.hpp) only monitors: zero torque, since any correction would "
-        "spoil the tuning. Shipped: `sim/scenes/schuler-gyro-pendulum.toml` (a tuned instrument, 3 h of "
-        "flight).\n\nIntegrators (`[loop] integrator`): with `model = \"magnus\"`: `gyro-exponential` "
+        "spoil the tuning. Or, `[vehicle] kind = \"kepler_orbit\"`, the pivot flies a Kepler ellipse (Chelnokov "
+        "§4, sim/motion/kepler_orbit.hpp, the [orbit] keys) in the orbital trihedron (O3 radial up, O2 the orbit "
+        "normal): the specific force at the pivot is 0, so only `model = \"rigid-body\"` with `start = "
+        "\"vertical\"` applies. Shipped: `sim/scenes/schuler-gyro-pendulum.toml` (a tuned instrument, 3 h of "
+        "flight), `sim/scenes/gyro-pendulum-kepler-orbit.toml` (one orbit, e = 0.3: the body's quaternion "
+        "against the harmonic oscillator z'' + ¼Ω²z = 0).\n\nIntegrators (`[loop] integrator`): with `model = \"magnus\"`: `gyro-exponential` "
         "(default; carries the nutation ω^N ≈ H/A exactly, so the step is bounded only by h ω^N ≤ 0.8·2π) or "
         "`rk4`; with `model = \"rigid-body\"`: `strang` (default), `yoshida4` (exact free-body flow, kicks "
         "of the pendulous and gravity-gradient torques) or `rk4`. The step is checked against the nutation "
@@ -39,7 +43,11 @@ extern const DeviceDescriptor kGyroPendulum{
         "so p and the period are meaningful for the magnus model or small tilts. No limits (the monitor "
         "commands no torque). CSV columns: `alpha_rad`, `beta_rad`, `tilt_rad`, `alpha_book_rad`, "
         "`beta_book_rad` (−Hw/(kR)), `precession_mode_rad` (|p|), `speed_m_s`, `heading_deg`, "
-        "`latitude_deg`, `status_bits`.",
+        "`latitude_deg`, `status_bits`. With `kind = \"kepler_orbit\"` also `kepler_oscillator_gap_max` (largest "
+        "|z − z_oracle| over the components of z = q_IB ∘ μ(t) against z(0) cos(Ωt/2) + (2/Ω) z'(0) sin(Ωt/2)), "
+        "`kepler_Omega_rad_s` (Ω = 2|z'(0)| = |L|/A), `orbit_period_s`; the Earth figures (the book's "
+        "velocity error, the Schuler period) do not apply there, and `speed_m_s`, `latitude_deg` are the "
+        "orbital speed and the pivot's declination.",
     .read = read_gyro_pendulum,
     .doc = gyro_pendulum_doc,
     .can_nodes = can::kNodeDrive1 | can::kNodeDrive2,

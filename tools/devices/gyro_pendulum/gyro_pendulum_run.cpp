@@ -5,7 +5,8 @@
 // manoeuvre corner, ~1e-6 rad); the period of p measured from zero crossings beside the book's
 // (12.61)/(12.68) or (12.60); the tuned offset s of (12.66)/(12.59), k of (12.57), ω^N — the half-step error
 // estimate (the Magnus model), the CSV columns, the figures, and the scene's plant and controller for the run
-// modes.
+// modes. With the pivot on a Kepler orbit (Chelnokov §4), also the gap between the body's quaternion
+// z = q_IB ∘ μ(t) and the harmonic oscillator z'' + ¼Ω²z = 0 it must obey (sim/oracles/schuler_tuning.hpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -18,6 +19,7 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/hysteresis_crossings.hpp"
+#include "sim/models/gyro_pendulum_quaternion.hpp"
 #include "sim/oracles/schuler_tuning.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/gyro_pendulum/gyro_pendulum_scene.hpp"
@@ -48,6 +50,7 @@ class GyroPendulumRun {
                    : oracles::GyroPendulumRoots{0.0, 0.0}),
         window_(s.loop.ticks() / 2, 1000),
         crossings_(s.period_threshold) {
+    if (plant_.kepler()) start_kepler_oracle();
     observe(0.0);
     mode_start_ = std::abs(p_);
   }
@@ -107,6 +110,11 @@ class GyroPendulumRun {
                      {"period_crossings", crossings_.crossings()}};
     f["period_measured_min"] =
         crossings_.crossings() >= 2 ? nlohmann::json(crossings_.period() / 60.0) : nlohmann::json(nullptr);
+    if (plant_.kepler()) {
+      f["kepler_Omega_rad_s"] = kepler_Omega_;
+      f["kepler_oscillator_gap_max"] = kepler_gap_;
+      f["orbit_period_s"] = s_.plant.orbit.period();
+    }
     if (g.H > 0.0) {
       f["nutation_frequency_rad_s"] = roots_.nutation;
       f["precession_rate_rad_s"] = roots_.precession;
@@ -147,7 +155,34 @@ class GyroPendulumRun {
  private:
   // The book's steady error −Hw/(kR) (12.65) and the deviation's precession mode (homogeneous (12.58):
   // z = Z1 e^(iω^N t) + Z2 e^(iω^P t)) at the current tick's start, t [s].
+  // Chelnokov §4: z = q_IB ∘ μ, μ = (cos ε/2, 0, 0, −sin ε/2), ε = c r t with c = (k − I3)/k (k = A, I3 = C:
+  // the body's moments) and r its constant axial rate; z(0), z'(0) from the start (the z-form's initial values).
+  void start_kepler_oracle() {
+    namespace ch = models::chelnokov;
+    const Plant::Body::State& x = plant_.body_state();
+    const dynamics::Vec3 w0(x[0], x[1], x[2]);
+    const Eigen::Map<const dynamics::Quat> q0(x.data() + Plant::Body::kAttitude);
+    kepler_c_ = (s_.plant.gyro.A - s_.plant.gyro.C) / s_.plant.gyro.A;
+    kepler_r_ = w0.z();
+    kepler_z0_ = ch::from_eigen(q0);
+    kepler_dz0_ = 0.5 * ch::mul(kepler_z0_, ch::pure(w0)) + ch::times_i3(kepler_z0_) * (-0.5 * kepler_c_ * kepler_r_);
+    kepler_Omega_ = 2.0 * kepler_dz0_.norm();
+  }
+  void kepler_oracle(double t) {
+    namespace ch = models::chelnokov;
+    const Eigen::Map<const dynamics::Quat> q(plant_.body_state().data() + Plant::Body::kAttitude);
+    const double eps = kepler_c_ * kepler_r_ * t;
+    const ch::Quat4 mu(std::cos(0.5 * eps), 0.0, 0.0, -std::sin(0.5 * eps));
+    ch::Quat4 z = ch::mul(ch::from_eigen(q), mu);
+    // q and −q are one attitude: the branch the oscillator follows.
+    ch::Quat4 oracle;
+    for (int j = 0; j < 4; ++j) oracle[j] = oracles::kepler_oscillator(kepler_z0_[j], kepler_dz0_[j], kepler_Omega_, t);
+    if (z.dot(oracle) < 0.0) z = -z;
+    kepler_gap_ = std::max(kepler_gap_, (z - oracle).cwiseAbs().maxCoeff());
+  }
+
   void observe(double t) {
+    if (plant_.kepler()) kepler_oracle(t);
     const auto& g = s_.plant.gyro;
     const double k = plant_.k_Nm_per_rad();
     const motion::SuspensionSample& pivot = plant_.pivot();
@@ -174,6 +209,8 @@ class GyroPendulumRun {
   double vertical_error_max_{0.0}, book_error_max_{0.0}, deviation_max_{0.0};
   double mode_start_{0.0}, mode_min_{1e300}, mode_max_{0.0}, ripple_max_{0.0};
   std::int64_t ticks_{0};
+  models::chelnokov::Quat4 kepler_z0_{models::chelnokov::Quat4::Zero()}, kepler_dz0_{models::chelnokov::Quat4::Zero()};
+  double kepler_c_{0.0}, kepler_r_{0.0}, kepler_Omega_{0.0}, kepler_gap_{0.0};
 };
 
 struct GyroPendulumTraits {

@@ -24,10 +24,12 @@ using Integrator = plants::GyroPendulumIntegrator;
 
 constexpr std::string_view kModels[] = {"magnus", "rigid-body"};
 constexpr std::string_view kStarts[] = {"equilibrium", "vertical"};
+constexpr std::string_view kPivots[] = {"earth", "kepler_orbit"};
 
 bool rigid_body(const S& s) {
   return s.plant.model == Model::kRigidBody;
 }
+bool kepler(const S& s) { return s.plant.pivot == plants::GyroPendulumPivot::kKeplerOrbit; }
 
 constexpr schema::Field<S> kModelFields[] = {
     F::choice(
@@ -35,6 +37,38 @@ constexpr schema::Field<S> kModelFields[] = {
         "`magnus`: small-angle (12.55)-(12.58) (sim/models/gyro_pendulum_magnus.hpp); `rigid-body`: the full "
         "3-D Newton–Euler body spinning at H/C (sim/models/schuler_pendulum.hpp)",
         GS_CHOICE(plant.model)),
+    F::choice("vehicle", "kind", kPivots,
+              "what carries the pivot: `earth` (a vehicle over the rotating Earth: [earth], [vehicle], "
+              "[segmentN]) or `kepler_orbit` (free flight on a Kepler ellipse, Chelnokov §4: the [orbit] keys, "
+              "sim/motion/kepler_orbit.hpp)",
+              GS_CHOICE(plant.pivot)),
+};
+
+// The orbit of `[vehicle] kind = "kepler_orbit"`.
+constexpr schema::Field<S> kOrbitFields[] = {
+    F::number("orbit", "gm_m3_s2", "m³/s²", Range::closed(1.0, 1e21), "GM of the attracting centre",
+              GS_NUMBER(plant.orbit.gm))
+        .when(kepler, "kepler_orbit"),
+    F::number("orbit", "semi_major_axis_m", "m", Range::closed(1.0, 1e12), "a", GS_NUMBER(plant.orbit.semi_major_axis))
+        .when(kepler, "kepler_orbit"),
+    F::number("orbit", "eccentricity", "", Range::closed(0.0, 0.99), "e (elliptic only)",
+              GS_NUMBER(plant.orbit.eccentricity))
+        .when(kepler, "kepler_orbit"),
+    F::number("orbit", "inclination_deg", "deg", Range::closed(0.0, 180.0), "i", GS_NUMBER(plant.orbit.inclination))
+        .degrees()
+        .when(kepler, "kepler_orbit"),
+    F::number("orbit", "node_deg", "deg", Range::closed(-360.0, 360.0), "right ascension of the ascending node",
+              GS_NUMBER(plant.orbit.node))
+        .degrees()
+        .when(kepler, "kepler_orbit"),
+    F::number("orbit", "perigee_deg", "deg", Range::closed(-360.0, 360.0), "argument of perigee",
+              GS_NUMBER(plant.orbit.perigee))
+        .degrees()
+        .when(kepler, "kepler_orbit"),
+    F::number("orbit", "mean_anomaly0_deg", "deg", Range::closed(-360.0, 360.0), "mean anomaly at t = 0",
+              GS_NUMBER(plant.orbit.mean_anomaly0))
+        .degrees()
+        .when(kepler, "kepler_orbit"),
 };
 
 constexpr schema::Field<S> kFields[] = {
@@ -90,6 +124,24 @@ constexpr schema::Rule<S> kRules[] = {
 };
 
 constexpr schema::Rule<S> kLoopRules[] = {
+    {"pendulum", "model", "kepler_orbit: `rigid-body` only (the small-angle form (12.58) is written for a pivot "
+                          "on the Earth's sphere: its R and g do not describe free flight)",
+     [](const S& s) -> std::string {
+       return kepler(s) && !rigid_body(s) ? "[vehicle] kind = \"kepler_orbit\" needs model = \"rigid-body\"" : "";
+     }},
+    {"pendulum", "start", "kepler_orbit: start = \"vertical\" (the steady error (12.65) is the Earth's)",
+     [](const S& s) -> std::string {
+       return kepler(s) && s.plant.start != plants::GyroPendulumStart::kVertical
+                  ? "[vehicle] kind = \"kepler_orbit\" needs start = \"vertical\""
+                  : "";
+     }},
+    {"segment1", "duration_s", "kepler_orbit: no [segmentN] and [vehicle] speed_m_s = 0 (the orbit moves the pivot)",
+     [](const S& s) -> std::string {
+       return kepler(s) && (s.plant.vehicle.count > 0 || s.plant.vehicle.start.speed != 0.0)
+                  ? "[vehicle] kind = \"kepler_orbit\": the orbit moves the pivot; remove the [segmentN] tables "
+                    "and speed_m_s"
+                  : "";
+     }},
     {"pendulum", "C", "rigid-body: a spinning body needs C > 0 (its spin is H/C)",
      [](const S& s) -> std::string {
        const auto& g = s.plant.gyro;
@@ -168,6 +220,7 @@ std::unique_ptr<DeviceScene> read_gyro_pendulum(SceneReader& r) {
   s->loop = rigid_body(*s) ? read_loop_config(r, "strang", {"strang", "yoshida4", "rk4"})
                            : read_loop_config(r, "gyro-exponential", {"gyro-exponential", "rk4"});
   read_vehicle_motion(r, s->plant.vehicle);
+  schema::read(r, kOrbitFields, *s);
   schema::read(r, kFields, *s);
   derive(*s);
   schema::check(r, kRules, *s);
@@ -185,6 +238,7 @@ SceneDoc gyro_pendulum_doc() {
     if (row.key == "`[pendulum] s_m`") row.fallback = "0 (tuned)";
     table.rows.push_back(std::move(row));
   }
+  for (SceneDocRow& row : schema::document(kOrbitFields).rows) table.rows.push_back(std::move(row));
   return {{table, vehicle_motion_doc()}, rules};
 }
 
