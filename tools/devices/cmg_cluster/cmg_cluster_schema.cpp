@@ -77,10 +77,10 @@ constexpr schema::Field<S> kFields[] = {
               GS_CHOICE(controller.steering.law)),
     F::number("controller", "lambda0", "-", Range::positive(), "λ0 of the singularity-robust inverse",
               GS_NUMBER(controller.steering.lambda0))
-        .when(robust, "singularity_robust"),
+        .when(robust, "singularity_robust, generalized_singularity_robust"),
     F::number("controller", "mu", "-", Range::non_negative(), "μ of the singularity-robust inverse",
               GS_NUMBER(controller.steering.mu))
-        .when(robust, "singularity_robust"),
+        .when(robust, "singularity_robust, generalized_singularity_robust"),
     F::number("controller", "dither_amplitude", "-", Range{0.0, 0.5, false, true},
               "ε0 of the generalized inverse's dither; below 1/2 E stays positive definite (eigenvalues ≥ 1 − 2ε0)",
               GS_NUMBER(controller.steering.dither_amplitude))
