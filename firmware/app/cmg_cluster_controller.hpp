@@ -5,7 +5,9 @@
 // clusters have them: the flight computer sends gimbal rate commands.
 //
 // Laws: firmware/control/attitude_quaternion_feedback.hpp (u = −K_p q_e,vec sign(q_e,0) − K_d ω + ω × H),
-// firmware/control/cmg_steering.hpp (ν = −A⁺ u: pseudo-inverse or singularity-robust inverse, rate limit).
+// firmware/control/cmg_steering.hpp (ν = −A⁺ u: pseudo-inverse, singularity-robust or generalized
+// singularity-robust inverse, rate limit). The generalized inverse's dither time is t = tick · T_b, the tick of
+// the sensor frame the law runs on (deterministic, the same on host and target).
 // The contract has two gimbal slots of each kind (firmware/msg/sensor_frame.hpp); the four-CMG cluster uses
 // them as follows (docs/models/cmg-cluster.md#signals):
 // Reads (SensorFrame): carrier_angle_rad = the spacecraft attitude q_WB as 3-2-1 angles (roll, pitch, yaw)
@@ -47,7 +49,11 @@ struct CmgClusterConfig {
 class CmgClusterLaw {
  public:
   explicit CmgClusterLaw(const CmgClusterConfig& c)
-      : array_(c.array), gains_(c.attitude), steering_(c.steering), reference_(c.reference) {}
+      : array_(c.array),
+        gains_(c.attitude),
+        steering_(c.steering),
+        reference_(c.reference),
+        tick_period_s_(c.runtime.tick_period_s()) {}
 
   void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
     const AttitudeQuaternion q = quaternion_from_euler321(
@@ -64,7 +70,8 @@ class CmgClusterLaw {
       }
     }
     attitude_torque(gains_, attitude_error(reference_, q), w, H, torque_);
-    const SteeringOutput o = steer_cmg(array_, steering_, delta, torque_);
+    const double t = static_cast<double>(in.tick) * tick_period_s_;
+    const SteeringOutput o = steer_cmg(array_, steering_, delta, torque_, t);
     measure_ = o.measure;
     lambda_ = o.lambda;
     cmd.gimbal_torque_Nm[msg::kAxis1] = o.rate[0];
@@ -86,6 +93,7 @@ class CmgClusterLaw {
   AttitudeGains gains_;
   SteeringParams steering_;
   AttitudeQuaternion reference_;
+  double tick_period_s_;
   double torque_[3]{};
   double measure_{0.0};
   double lambda_{0.0};
@@ -105,8 +113,13 @@ class BasicCmgClusterController : public ControllerRuntime<CmgClusterLaw, Clock>
     const double n = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
     if (!(std::fabs(n - 1.0) < 1e-9)) return ConfigCheck::refused("cmg cluster: the reference quaternion must be unit", n);
     if (c.array.count > 4) return ConfigCheck::refused("cmg cluster: the contract carries at most 4 gimbals", c.array.count);
-    if (c.steering.law == SteeringLaw::kSingularityRobust && !(c.steering.lambda0 > 0.0)) {
+    if (is_robust(c.steering.law) && !(c.steering.lambda0 > 0.0)) {
       return ConfigCheck::refused("cmg cluster: the singularity-robust inverse needs lambda0 > 0", c.steering.lambda0);
+    }
+    if (c.steering.law == SteeringLaw::kGeneralizedSingularityRobust &&
+        c.steering.dither_frequency * c.runtime.control_period_s() > kMaxDitherStep) {
+      return ConfigCheck::refused("cmg cluster: the sampled dither needs dither_frequency * T_c <= 0.5",
+                                  c.steering.dither_frequency, 0.0, kMaxDitherStep / c.runtime.control_period_s());
     }
     const ConfigCheck s = check_cmg_steering(c.array, c.steering);
     if (!s.ok) return s;

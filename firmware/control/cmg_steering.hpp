@@ -9,6 +9,14 @@
 //                        det(A Aᵀ) = 0: the singular directions are those the cluster cannot torque about.
 //   singularity_robust   A⁺ = Aᵀ (A Aᵀ + λ I)⁻¹, λ = λ0 exp(−μ det(T Tᵀ)) (Nakamura–Hanafusa; Wie's
 //                        exponential schedule): a torque error near a singularity instead of unbounded rates.
+//   generalized_singularity_robust   A# = Aᵀ (A Aᵀ + λ E)⁻¹, E = [[1, ε3, ε2], [ε3, 1, ε1], [ε2, ε1, 1]],
+//                        ε_i = ε0 sin(ω t + φ_i), φ = (0, π/2, π) (Wie, Bailey, Heiberg 2001): the off-diagonal
+//                        dither turns a demand along the singular direction u_s into a small demand off it,
+//                        which A# maps onto rates (Aᵀ(AAᵀ + λI)⁻¹ u_s = 0: the plain robust inverse cannot).
+//                        E is positive definite for every t when ε0 < 1/2 (Gershgorin: its eigenvalues lie in
+//                        [1 − 2ε0, 1 + 2ε0], and all ε_i = −ε0 reaches 1 − 2ε0), so A Aᵀ + λ E stays invertible
+//                        with its smallest eigenvalue ≥ λ (1 − 2ε0): check() refuses ε0 ≥ 1/2. t is the caller's
+//                        tick count times the tick period (deterministic: no clock is read).
 // Computed with T = A/h (dimensionless): ν = −(1/h) Tᵀ (T Tᵀ + λ I)⁻¹ u, and the singularity measure
 // m = det(T Tᵀ) = det(A Aᵀ)/h⁶, so λ0, μ need no unit. The pseudo-inverse refuses to invert where
 // m ≤ singular_floor (ν = 0, `singular` set): at the singular configuration it cannot give a torque along
@@ -37,7 +45,13 @@ struct CmgArray {
   double h{5.0};                          // rotor momentum of each CMG [N m s]
 };
 
-enum class SteeringLaw : std::uint8_t { kPseudoInverse, kSingularityRobust };
+enum class SteeringLaw : std::uint8_t { kPseudoInverse, kSingularityRobust, kGeneralizedSingularityRobust };
+
+// The dither's phases φ_i (Wie, Bailey, Heiberg 2001): ε_1 = −ε_3 = ε0 sin ωt and ε_2 = ε0 cos ωt, a quarter
+// period apart, so E never returns to I (at every t one |ε_i| ≥ ε0/√2).
+inline constexpr double kDitherPhase[3] = {0.0, 1.5707963267948966, 3.141592653589793};
+// The sampled dither must be resolved: ω T_c ≤ 0.5 (at least 12 samples per period).
+inline constexpr double kMaxDitherStep = 0.5;
 
 struct SteeringParams {
   SteeringLaw law{SteeringLaw::kSingularityRobust};
@@ -45,7 +59,18 @@ struct SteeringParams {
   double mu{10.0};               // μ [-]
   double max_rate{1.0};          // gimbal rate limit [rad/s]
   double singular_floor{1e-10};  // the pseudo-inverse's smallest invertible det(T Tᵀ) [-]
+  double dither_amplitude{0.01};                 // ε0 of the generalized inverse, < 1/2 [-]
+  double dither_frequency{1.5707963267948966};  // ω of the generalized inverse [rad/s]
 };
+
+inline bool is_robust(SteeringLaw law) {
+  return law == SteeringLaw::kSingularityRobust || law == SteeringLaw::kGeneralizedSingularityRobust;
+}
+
+// ε_i = ε0 sin(ω t + φ_i) at the time t [s]. O(1).
+inline void dither_epsilons(const SteeringParams& p, double t, double (&eps)[3]) {
+  for (int i = 0; i < 3; ++i) eps[i] = p.dither_amplitude * math::sin(p.dither_frequency * t + kDitherPhase[i]);
+}
 
 struct SteeringOutput {
   double rate[kMaxCmgUnits]{};  // ν_i [rad/s]
@@ -53,6 +78,7 @@ struct SteeringOutput {
   double lambda{0.0};           // the damping used [-]
   bool rate_limited{false};     // scaled down to max_rate
   bool singular{false};         // pseudo-inverse at m ≤ singular_floor: no rates
+  double eps[3]{};              // ε_1, ε_2, ε_3 of the generalized inverse (0 otherwise) [-]
 };
 
 struct CmgAxes {
@@ -76,8 +102,10 @@ inline CmgAxes cmg_axes(const CmgArray& a, const double* delta) {
   return out;
 }
 
-// ν = −A⁺ u for the torque demand u [N m] (body axes) at the gimbal angles delta [rad]. O(N).
-inline SteeringOutput steer_cmg(const CmgArray& a, const SteeringParams& p, const double* delta, const double* u) {
+// ν = −A⁺ u for the torque demand u [N m] (body axes) at the gimbal angles delta [rad]; t [s] is the
+// generalized inverse's dither time (unused by the other laws). O(N).
+inline SteeringOutput steer_cmg(const CmgArray& a, const SteeringParams& p, const double* delta, const double* u,
+                                double t = 0.0) {
   const CmgAxes ax = cmg_axes(a, delta);
   double M[3][3]{};
   for (int i = 0; i < a.count; ++i) {
@@ -91,9 +119,19 @@ inline SteeringOutput steer_cmg(const CmgArray& a, const SteeringParams& p, cons
            m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
   };
   out.measure = det3(M);
-  if (p.law == SteeringLaw::kSingularityRobust) {
+  if (is_robust(p.law)) {
     out.lambda = p.lambda0 * math::exp(-p.mu * out.measure);
     for (int k = 0; k < 3; ++k) M[k][k] += out.lambda;
+    if (p.law == SteeringLaw::kGeneralizedSingularityRobust) {
+      dither_epsilons(p, t, out.eps);
+      // E's off-diagonals: E[1][2] = ε1, E[0][2] = ε2, E[0][1] = ε3.
+      M[1][2] += out.lambda * out.eps[0];
+      M[2][1] += out.lambda * out.eps[0];
+      M[0][2] += out.lambda * out.eps[1];
+      M[2][0] += out.lambda * out.eps[1];
+      M[0][1] += out.lambda * out.eps[2];
+      M[1][0] += out.lambda * out.eps[2];
+    }
   } else if (!(out.measure > p.singular_floor)) {
     out.singular = true;
     return out;
@@ -142,6 +180,16 @@ inline ConfigCheck check_cmg_steering(const CmgArray& a, const SteeringParams& p
     return ConfigCheck::refused("cmg steering: lambda0 and mu must be finite and >= 0", p.lambda0);
   }
   if (!(p.singular_floor > 0.0)) return ConfigCheck::refused("cmg steering: singular_floor must be > 0", p.singular_floor);
+  if (p.law == SteeringLaw::kGeneralizedSingularityRobust) {
+    // ε0 ≥ 1/2 lets E (and with it A Aᵀ + λ E at a singular configuration) become indefinite.
+    if (!(p.dither_amplitude >= 0.0 && p.dither_amplitude < 0.5)) {
+      return ConfigCheck::refused("cmg steering: dither_amplitude must be in [0, 0.5) (E positive definite)",
+                                  p.dither_amplitude, 0.0, 0.5);
+    }
+    if (!(std::isfinite(p.dither_frequency) && p.dither_frequency >= 0.0)) {
+      return ConfigCheck::refused("cmg steering: dither_frequency must be finite and >= 0", p.dither_frequency);
+    }
+  }
   return ConfigCheck::accepted();
 }
 

@@ -12,12 +12,15 @@ extern const DeviceDescriptor kCmgCluster{
         "The gimbal rate servos (PI, motor torque limit, poles at −ω_s) are in the plant, as in a CMG's own "
         "electronics; the firmware (firmware/app/cmg_cluster_controller.hpp) closes the attitude loop by "
         "quaternion error feedback u = −K_p q_e,vec sign(q_e,0) − K_d ω + ω × H and steers the gimbals by ν = "
-        "−A⁺u with the pseudo-inverse or the singularity-robust inverse. Four gimbal angles and four rate "
+        "−A⁺u with the pseudo-inverse, the singularity-robust inverse or the generalized singularity-robust "
+        "inverse (Wie's deterministic off-diagonal dither, timed by the tick). Four gimbal angles and four rate "
         "commands ride in the contract's two gimbal slots of each kind (the controller's header has the map). "
         "Shipped: `sim/scenes/cmg-cluster-slew.toml` (30° rest-to-rest about x), "
         "`sim/scenes/cmg-cluster-singularity-pseudo-inverse.toml` and "
         "`sim/scenes/cmg-cluster-singularity-robust.toml` (a 60° slew about x whose momentum demand crosses the "
-        "pyramid's internal singularity at 2h cosβ: the pseudo-inverse stalls there, the robust inverse passes). "
+        "pyramid's internal singularity at 2h cosβ: the pseudo-inverse stalls there, the robust inverse passes), "
+        "`sim/scenes/cmg-cluster-singularity-generalized.toml` (the same with the gyro noise off: only the "
+        "generalized inverse passes). "
         "Integrator: `rk4` (the only one).",
     .figures =
         "Figures: `final_attitude_error_deg`, `settling_time_s` (the last time the error was outside "

@@ -105,8 +105,8 @@ class CmgClusterRun {
     const bool settled = last_outside_s_ < duration;
     dynamics::Vec3 axis(s_.slew_axis_x, s_.slew_axis_y, s_.slew_axis_z);
     axis.normalize();
-    return {{"steering", s_.controller.steering.law == firmware::SteeringLaw::kPseudoInverse ? "pseudo_inverse"
-                                                                                          : "singularity_robust"},
+    constexpr const char* kLaw[] = {"pseudo_inverse", "singularity_robust", "generalized_singularity_robust"};
+    return {{"steering", kLaw[static_cast<int>(s_.controller.steering.law)]},
             {"slew_deg", s_.slew_rad * kDeg},
             {"final_attitude_error_deg", error_ * kDeg},
             {"settle_band_deg", s_.settle_band_rad * kDeg},

@@ -17,9 +17,12 @@ using S = CmgClusterScene;
 using F = schema::Fields<S>;
 using Controller = firmware::BasicCmgClusterController<firmware::posix::MonotonicClock>;
 
-constexpr std::string_view kSteering[] = {"pseudo_inverse", "singularity_robust"};
+constexpr std::string_view kSteering[] = {"pseudo_inverse", "singularity_robust", "generalized_singularity_robust"};
 
-bool robust(const S& s) { return s.controller.steering.law == firmware::SteeringLaw::kSingularityRobust; }
+bool robust(const S& s) { return firmware::is_robust(s.controller.steering.law); }
+bool generalized(const S& s) {
+  return s.controller.steering.law == firmware::SteeringLaw::kGeneralizedSingularityRobust;
+}
 
 constexpr schema::Field<S> kFields[] = {
     F::number("spacecraft", "Jxx", "kg m²", Range::positive(), "inertia tensor (spacecraft + CMG units), body axes",
@@ -69,14 +72,22 @@ constexpr schema::Field<S> kFields[] = {
                "absolute gimbal encoders (read in [−π, π))", GS_INTEGER(plant.sensors.gimbal_encoder_counts_per_rev)),
     F::choice("controller", "steering", kSteering,
               "`pseudo_inverse`: ν = −Aᵀ(AAᵀ)⁻¹u; `singularity_robust`: ν = −Aᵀ(AAᵀ + λI)⁻¹u, "
-              "λ = λ0 exp(−μ det(AAᵀ)/h⁶)",
+              "λ = λ0 exp(−μ det(AAᵀ)/h⁶); `generalized_singularity_robust`: ν = −Aᵀ(AAᵀ + λE)⁻¹u, E = I + the "
+              "off-diagonal dither ε_i = ε0 sin(ωt + φ_i), φ = (0, π/2, π), t = tick · tick period",
               GS_CHOICE(controller.steering.law)),
     F::number("controller", "lambda0", "-", Range::positive(), "λ0 of the singularity-robust inverse",
               GS_NUMBER(controller.steering.lambda0))
-        .when(robust, "singularity_robust"),
+        .when(robust, "singularity_robust, generalized_singularity_robust"),
     F::number("controller", "mu", "-", Range::non_negative(), "μ of the singularity-robust inverse",
               GS_NUMBER(controller.steering.mu))
-        .when(robust, "singularity_robust"),
+        .when(robust, "singularity_robust, generalized_singularity_robust"),
+    F::number("controller", "dither_amplitude", "-", Range{0.0, 0.5, false, true},
+              "ε0 of the generalized inverse's dither; below 1/2 E stays positive definite (eigenvalues ≥ 1 − 2ε0)",
+              GS_NUMBER(controller.steering.dither_amplitude))
+        .when(generalized, "generalized_singularity_robust"),
+    F::number("controller", "dither_frequency", "rad/s", Range::non_negative(),
+              "ω of the generalized inverse's dither (ω T_c ≤ 0.5)", GS_NUMBER(controller.steering.dither_frequency))
+        .when(generalized, "generalized_singularity_robust"),
     F::number("controller", "max_gimbal_rate", "rad/s", Range::closed(1e-3, 10.0),
               "gimbal rate command limit (all rates scaled by one factor)", GS_NUMBER(controller.steering.max_rate)),
     F::number("controller", "slew_deg", "deg", Range::closed(0.0, 180.0),
@@ -163,6 +174,14 @@ std::string plant_step_problem(const S& s) {
   return "";
 }
 
+// The generalized inverse's dither sampled too coarsely: "" or the problem.
+std::string dither_problem(const S& s) {
+  const double step = s.controller.steering.dither_frequency * s.controller.runtime.control_period_s();
+  if (!generalized(s) || step <= firmware::kMaxDitherStep) return "";
+  return "dither_frequency " + std::to_string(s.controller.steering.dither_frequency) +
+         " rad/s times the control period is " + std::to_string(step) + ", above 0.5";
+}
+
 bool possible(const S& s) { return s.geometry_problem.empty() && s.plant.model.invalid_reason() == nullptr; }
 
 constexpr schema::Rule<S> kRules[] = {
@@ -183,7 +202,11 @@ constexpr schema::Rule<S> kRules[] = {
     {"controller", "attitude_bandwidth",
      "the controller's start-up check (firmware/app/cmg_cluster_controller.hpp): the sampled attitude loop holds "
      "(K_d T/J ≤ 0.5, sqrt(K_p/2J) T ≤ 0.5) and its fastest rate is at most servo_bandwidth/4",
-     [](const S& s) -> std::string { return possible(s) ? controller_refusal<Controller>(s) : ""; }},
+     [](const S& s) -> std::string {
+       return possible(s) && dither_problem(s).empty() ? controller_refusal<Controller>(s) : "";
+     }},
+    {"controller", "dither_frequency", "the sampled dither is resolved: dither_frequency · control period ≤ 0.5",
+     dither_problem},
     {"loop", "plant_substeps",
      "the plant step resolves the fastest mode of the spacecraft with its CMGs (servo poles, spacecraft-rotor "
      "nutation, free-gimbal nutation h/sqrt(I_g J)); the message gives the plant_substeps needed",
