@@ -1,8 +1,10 @@
 // Every `gyrostab run` report carries an error estimate beside its run time (docs/accuracy.md): for
 // every shipped scene, run to its full duration, report.json "error_estimate" is available, the window's
 // re-integration at the run's own step lands on the run's states bit for bit (`reproduces_run`: the capture
-// of state and held inputs is complete) and every per-state estimate is finite and non-negative. The one
-// documented exception, the dc-drive scene (its drives step inside the tick), must say why instead.
+// of state and held inputs is complete) and every per-state estimate is finite and non-negative. The
+// documented exceptions must say why instead: the dc-drive scene (its drives step inside the tick) and the
+// gyro pendulum on a Kepler orbit (the rigid-body variant; its error is bounded by its oracle in
+// tests/oracle/chelnokov_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,7 +29,8 @@ TEST(RunErrorEstimate, EveryShippedSceneReportsOneOrSaysWhyNot) {
     ASSERT_EQ(run_scene(req), 0);
     ASSERT_TRUE(report.contains("error_estimate"));
     const nlohmann::json& e = report["error_estimate"];
-    if (std::filesystem::path(path).stem() == "power-stabilizer-drive") {
+    const std::string stem = std::filesystem::path(path).stem().string();
+    if (stem == "power-stabilizer-drive" || stem == "gyro-pendulum-kepler-orbit") {
       EXPECT_FALSE(e["available"].get<bool>());
       EXPECT_FALSE(e["why"].get<std::string>().empty());
       continue;
