@@ -21,6 +21,7 @@
 
 #include <Eigen/Dense>
 
+#include "tests/support/scene_text.hpp"
 #include "firmware/app/cmg_cluster_controller.hpp"
 #include "firmware/control/cmg_steering.hpp"
 #include "sim/models/cmg_geometry.hpp"
@@ -173,19 +174,8 @@ TEST(CmgGeneralizedInverse, DampedMatrixStaysPositiveDefinite) {
 }
 
 // (c) The shipped scene with each law.
-std::string read_text(const std::string& path) {
-  std::ifstream f(path);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-std::string replaced(std::string t, const std::string& from, const std::string& to) {
-  const auto at = t.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) t.replace(at, from.size(), to);
-  return t;
-}
+using gyrostab::testing::read_text;
+using gyrostab::testing::replaced;
 
 // The text without the line that starts with `key =` (the dither keys apply to the generalized inverse only).
 std::string without_key(std::string t, const std::string& key) {

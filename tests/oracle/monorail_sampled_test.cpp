@@ -12,6 +12,7 @@
 // (hω)⁴/120 ≈ 6e-11 per step), the release tilt 0.015° keeps the large-angle terms at (φ²/6) ≈ 1e-8, the
 // CSV's 17 digits and the fit's conditioning (the slowest |z| = 0.9993): measured 2e-7 on the straight, 4e-6
 // in the curve (its frame-rate terms H Ω3 sinφ cosβ at second order); tolerance 1e-4.
+#include "tests/support/scene_text.hpp"
 #include "tools/devices/monorail/monorail_sampled.hpp"
 
 #include <gtest/gtest.h>
@@ -33,19 +34,8 @@
 
 namespace gyrostab::monorail_sampled_test {
 
-std::string read_text(const std::string& path) {
-  std::ifstream f(path);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-std::string replaced(std::string t, const std::string& from, const std::string& to) {
-  const auto at = t.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) t.replace(at, from.size(), to);
-  return t;
-}
+using gyrostab::testing::read_text;
+using gyrostab::testing::replaced;
 
 const std::string kScene = GYROSTAB_SOURCE_DIR "/sim/scenes/monorail.toml";
 

@@ -19,6 +19,7 @@
 // by ≈ (hω)⁵/120 per step (frequency error (hω)⁴/120 ≈ 5e-9 relative). The tolerances below are set from these
 // and from the measurement (extrema located by a parabola through three samples: a vertex time error
 // O((hω)² h), amplitude O((hω)⁴)), each stated where it is used.
+#include "tests/support/scene_text.hpp"
 #include "sim/models/position_gyro_platform.hpp"
 
 #include <gtest/gtest.h>
@@ -426,12 +427,7 @@ TEST(PositionGyroPlatformOracle, SampledLoopLimitsAGainTheContinuousLoopAccepts)
 
 // ---- the shipped and refused scenes ------------------------------------------------------------------------
 
-std::string read_text(const std::string& path) {
-  std::ifstream f(path);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using gyrostab::testing::read_text;
 
 const std::string kScene = GYROSTAB_SOURCE_DIR "/sim/scenes/position-gyro-platform.toml";
 

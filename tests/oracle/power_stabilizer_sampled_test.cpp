@@ -11,6 +11,7 @@
 //   (d) the shipped scenes as they are: the sampled prediction is the closer one; what is left is the
 //       measurement's (seeded rate noise, the operating point moving under the 20 N m step), bounded below;
 //   (e) the check refuses a loop that is stable in continuous time but not sampled, and says so.
+#include "tests/support/scene_text.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_sampled.hpp"
 
 #include <gtest/gtest.h>
@@ -35,19 +36,8 @@ namespace gyrostab::power_stabilizer_sampled_test {
 using firmware::PowerStabilizerConfig;
 using firmware::PowerStabilizerOutput;
 
-std::string read_text(const std::string& path) {
-  std::ifstream f(path);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-std::string replaced(std::string t, const std::string& from, const std::string& to) {
-  const auto at = t.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) t.replace(at, from.size(), to);
-  return t;
-}
+using gyrostab::testing::read_text;
+using gyrostab::testing::replaced;
 
 const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
 

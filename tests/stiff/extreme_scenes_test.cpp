@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/scene_text.hpp"
 #include "tools/commands.hpp"
 
 namespace gyrostab {
@@ -24,12 +25,7 @@ struct Outcome {
   std::string csv;
 };
 
-std::string read_text(const std::string& path) {
-  std::ifstream f(path);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using gyrostab::testing::read_text;
 
 // `text` non-empty: run that text as the scene (a variant of a file), named `name`.
 Outcome run(const std::string& name, const std::string& text = "", std::int64_t ticks = -1) {
@@ -42,9 +38,9 @@ Outcome run(const std::string& name, const std::string& text = "", std::int64_t 
   Outcome o;
   req.report_out = &o.report;
   req.csv_out = &o.csv;
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   o.rc = tools::run_scene(req);
-  o.errors = testing::internal::GetCapturedStderr();
+  o.errors = ::testing::internal::GetCapturedStderr();
   return o;
 }
 
