@@ -159,6 +159,19 @@ DerivativeBounds derivative_bounds(const motion::SceneBaseMotion& m, double t0, 
 
 const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
 
+// A shipped scene run to its end in process: its signals.csv text (and its report, if asked).
+std::string run_csv(const std::string& path, nlohmann::json* report = nullptr) {
+  tools::RunRequest req;
+  req.scene_path = path;
+  req.write_outputs = false;
+  req.progress = false;
+  std::string csv;
+  req.csv_out = &csv;
+  req.report_out = report;
+  EXPECT_EQ(tools::run_scene(req), 0) << path;
+  return csv;
+}
+
 TEST(RecordedMotion, ShippedRecordReplaysItsGeneratorWithinTheInterpolationBound) {
   tools::SceneReader rg, rr;
   const auto gen = read_scene(kScenes + "power-stabilizer-ship-motion.toml", rg);
@@ -183,18 +196,8 @@ TEST(RecordedMotion, ShippedRecordReplaysItsGeneratorWithinTheInterpolationBound
 // (2π/2¹⁸ = 2.4e-5 rad); a count that flips at a boundary feeds back through the law, so the tolerance is two
 // counts.
 TEST(RecordedMotion, ShippedRecordedSceneRunsLikeItsGeneratorScene) {
-  const auto run = [](const std::string& path) {
-    tools::RunRequest req;
-    req.scene_path = path;
-    req.write_outputs = false;
-    req.progress = false;
-    std::string csv;
-    req.csv_out = &csv;
-    EXPECT_EQ(tools::run_scene(req), 0) << path;
-    return csv;
-  };
-  const std::string a = run(kScenes + "power-stabilizer-ship-motion.toml");
-  const std::string b = run(kScenes + "power-stabilizer-recorded-motion.toml");
+  const std::string a = run_csv(kScenes + "power-stabilizer-ship-motion.toml");
+  const std::string b = run_csv(kScenes + "power-stabilizer-recorded-motion.toml");
   std::istringstream sa(a), sb(b);
   std::string la, lb;
   std::getline(sa, la);
@@ -248,19 +251,8 @@ TEST(RecordedMotion, ConingRecordReplaysItsGeneratorWithinTheInterpolationBound)
 // (the mean over whole periods) against the generator's: the record moves it by 2 ε_ω/Ω0 relative at most.
 TEST(RecordedMotion, ConingRecordedSceneRunsLikeItsGeneratorScene) {
   nlohmann::json ra, rb;
-  const auto run = [](const std::string& path, nlohmann::json& report) {
-    tools::RunRequest req;
-    req.scene_path = path;
-    req.write_outputs = false;
-    req.progress = false;
-    std::string csv;
-    req.csv_out = &csv;
-    req.report_out = &report;
-    EXPECT_EQ(tools::run_scene(req), 0) << path;
-    return csv;
-  };
-  const std::string a = run(kScenes + "coning-p-gyro-planar-vibration.toml", ra);
-  const std::string b = run(kScenes + "coning-recorded-motion.toml", rb);
+  const std::string a = run_csv(kScenes + "coning-p-gyro-planar-vibration.toml", &ra);
+  const std::string b = run_csv(kScenes + "coning-recorded-motion.toml", &rb);
   std::istringstream sa(a), sb(b);
   std::string la, lb;
   std::getline(sa, la);
@@ -304,18 +296,8 @@ TEST(RecordedMotion, ConingRecordedSceneRunsLikeItsGeneratorScene) {
 // come from the record's attitude, a cubic Hermite on q with exact slopes: ≤ h⁴ |q⁗|/384 = 0.5⁴ (|ω|/2)⁴/384
 // = 7.6e-11 rad (|ω| = 0.052 rad/s), so α − ψ and ψ within 2 × that.
 TEST(RecordedMotion, GimbalErrorRecordedSceneRunsLikeItsGeneratorScene) {
-  const auto run = [](const std::string& path) {
-    tools::RunRequest req;
-    req.scene_path = path;
-    req.write_outputs = false;
-    req.progress = false;
-    std::string csv;
-    req.csv_out = &csv;
-    EXPECT_EQ(tools::run_scene(req), 0) << path;
-    return csv;
-  };
-  const std::string a = run(kScenes + "gimbal-error-heading-gyro-turn.toml");
-  const std::string b = run(kScenes + "gimbal-error-recorded-motion.toml");
+  const std::string a = run_csv(kScenes + "gimbal-error-heading-gyro-turn.toml");
+  const std::string b = run_csv(kScenes + "gimbal-error-recorded-motion.toml");
   std::istringstream sa(a), sb(b);
   std::string la, lb;
   std::getline(sa, la);
