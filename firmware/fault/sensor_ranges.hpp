@@ -32,6 +32,15 @@ struct SensorRanges {
   Range encoder_count[msg::kGimbalAxes]{kAnyInt32, kAnyInt32};                               // [counts]
 };
 
+// The rotor-speed range of a device whose rotor spins at `nominal_rad_s`: the default, widened to twice the
+// nominal speed for a faster rotor. A range narrower than the rotor's own speed would hold the controller in
+// its safe state from the first frame (kSensorOutOfRange), which no scene could notice from its figures.
+constexpr Range rotor_speed_range_for(double nominal_rad_s) {
+  const Range wide = SensorRanges{}.rotor_speed_rad_s;
+  const double twice = 2.0 * (nominal_rad_s < 0.0 ? -nominal_rad_s : nominal_rad_s);
+  return twice > wide.max ? Range{-twice, twice} : wide;
+}
+
 // Every checked signal of a SensorFrame, in contract order (for counters and diagnostics).
 enum class SensorSignal : std::uint8_t {
   kCarrierAngleRoll,

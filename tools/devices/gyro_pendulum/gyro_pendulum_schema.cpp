@@ -5,6 +5,7 @@
 #include <complex>
 #include <string>
 
+#include "firmware/fault/sensor_ranges.hpp"
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/dynamics/step_validation.hpp"
 #include "sim/oracles/schuler_tuning.hpp"
@@ -210,6 +211,8 @@ void derive(S& s) {
   }
   g.s = (s.s_given != 0.0 ? s.s_given : s.s_tuned) * s.detuning;
   s.controller.runtime.tick_period_ns = s.loop.tick_ns;
+  if (std::isfinite(g.H) && std::isfinite(g.C) && g.C > 0.0)
+    s.controller.runtime.monitor.ranges.rotor_speed_rad_s = firmware::rotor_speed_range_for(g.H / g.C);
 }
 
 }  // namespace

@@ -1,7 +1,10 @@
 #include "tools/devices/monorail/monorail_sampled.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+
+#include <Eigen/LU>
 
 namespace gyrostab::tools {
 
@@ -65,6 +68,42 @@ Eigen::Vector2d monorail_sampled_steady(const models::MonorailParams& car, const
   const Eigen::VectorXd x = analysis::sampled_steady_state(monorail_linear_plant(car, Omega3), law, t, E,
                                                            Eigen::Vector2d(M1, law.D(0, 0) * bias));
   return {x[0], x[1]};
+}
+
+Eigen::Vector2d monorail_sampled_steady_large_angle(const models::MonorailParams& car,
+                                                    const firmware::MonorailConfig& c, double Omega3,
+                                                    const analysis::SampledTiming& t, double gust_Nm,
+                                                    double lateral_g, double bias) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Eigen::Vector2d x = monorail_sampled_steady(car, c, Omega3, t, gust_Nm + car.c * lateral_g, bias);
+  if (!x.allFinite()) return {nan, nan};
+  const double D_phi = monorail_probed_law(c).D(0, 0);
+  models::Monorail m(car);
+  const auto residual = [&](const Eigen::Vector2d& q) {
+    m.inputs.Omega3 = Omega3;
+    m.inputs.M1 = gust_Nm + car.c * lateral_g * std::cos(q[0]);
+    m.inputs.M2 = D_phi * (q[0] + bias);
+    models::Monorail::State dx;
+    m.derivative(0.0, models::Monorail::make_state(q[0], q[1], 0.0, 0.0), dx);
+    // Accelerations times the inertias: the torque balances, of one size on both axes.
+    return Eigen::Vector2d(dx[2] * car.A, dx[3] * car.B);
+  };
+  for (int it = 0; it < 50; ++it) {
+    const Eigen::Vector2d r = residual(x);
+    Eigen::Matrix2d J;
+    for (int j = 0; j < 2; ++j) {
+      Eigen::Vector2d e = x;
+      const double h = 1e-7 * std::max(1.0, std::fabs(x[j]));
+      e[j] += h;
+      J.col(j) = (residual(e) - r) / h;
+    }
+    const Eigen::Vector2d step = J.fullPivLu().solve(r);
+    if (!step.allFinite()) return {nan, nan};
+    x -= step;
+    if (step.norm() <= 1e-15 * std::max(1.0, x.norm())) return x;
+  }
+  return residual(x).norm() <= 1e-9 * (std::fabs(gust_Nm) + car.c * std::fabs(lateral_g) + 1.0) ? x
+                                                                                               : Eigen::Vector2d(nan, nan);
 }
 
 }  // namespace gyrostab::tools

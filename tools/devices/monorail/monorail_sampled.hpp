@@ -31,4 +31,13 @@ MonorailSampled monorail_sampled(const models::MonorailParams& car, const firmwa
 Eigen::Vector2d monorail_sampled_steady(const models::MonorailParams& car, const firmware::MonorailConfig& c,
                                         double Omega3, const analysis::SampledTiming& t, double M1, double bias);
 
+// The same fixed point with the car's large-angle terms (sim/models/monorail.hpp): a zero-order hold keeps the
+// equilibria of the nonlinear loop too, so the sampled loop settles where the model's accelerations vanish at
+// rest under the law's steady command M2 = D_φ (φ + bias). The roll moment is the gust plus the centrifugal
+// c b cos φ of a lateral acceleration b (in g), as the plant applies it. Newton from the linear fixed point;
+// NaN if it does not converge (the linear point is then the better guess, and the caller reports that one).
+Eigen::Vector2d monorail_sampled_steady_large_angle(const models::MonorailParams& car,
+                                                    const firmware::MonorailConfig& c, double Omega3,
+                                                    const analysis::SampledTiming& t, double gust_Nm,
+                                                    double lateral_g, double bias);
 }  // namespace gyrostab::tools

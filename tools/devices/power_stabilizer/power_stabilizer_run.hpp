@@ -17,6 +17,7 @@
 
 #include "sim/analysis/drive_peaks.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/analysis/nutation_meter.hpp"
 #include "sim/analysis/periodic_drift.hpp"
 #include "sim/analysis/running_stats.hpp"
@@ -54,10 +55,19 @@ class PowerStabilizerRun {
                                                                 std::llround(s.drift_from_s / s.loop.tick_s()))
                                       : analysis::PeriodicDrift()),
         meter_every_(meter_interval(s)),
+        fit_(first_step_s(s.plant.disturbance) + 0.02, first_step_s(s.plant.disturbance) + s.measure_window_s,
+             static_cast<double>(meter_every_) * s.loop.tick_s(), fit_order(s), fit_channels(s, meter_every_)),
         window_(static_cast<std::int64_t>(std::min(s.plant.disturbance.t1, s.plant.disturbance.t2) / s.loop.tick_s()),
                 static_cast<std::int64_t>(1.0 / s.loop.tick_s())) {}
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void sense(std::int64_t tick, msg::SensorFrame& f) {
+    plant_.sense(tick, f);
+    // What the firmware's frame got wrong (encoder counts, rate noise): inputs of the loop for the fit.
+    sensor_error_[0] = f.gimbal_angle_rad[msg::kAxis1] - plant_.alpha_rad();
+    sensor_error_[1] = f.gimbal_angle_rad[msg::kAxis2] - plant_.beta_rad();
+    sensor_error_[2] = f.gimbal_rate_rad_s[msg::kAxis1] - plant_.alpha_rate_rad_s();
+    sensor_error_[3] = f.gimbal_rate_rad_s[msg::kAxis2] - plant_.beta_rate_rad_s();
+  }
   void actuate(const msg::ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
@@ -79,7 +89,10 @@ class PowerStabilizerRun {
     }
     // The meter samples at the law's rate (1 kHz): at a 10 kHz base tick the friction's stick-slip steps in
     // α' would otherwise count as extrema; and no faster than ~100 samples per predicted period.
-    if ((tick + 1) % meter_every_ == 0) meter_.add(t + s_.loop.tick_s(), plant_.alpha_rate_rad_s());
+    if ((tick + 1) % meter_every_ == 0) {
+      meter_.add(t + s_.loop.tick_s(), plant_.alpha_rate_rad_s());
+      fit_.add(t + s_.loop.tick_s(), plant_.alpha_rad(), sensor_error_.data());
+    }
     alpha_.add(plant_.alpha_rad());
     beta_.add(plant_.beta_rad());
     if (drift_.enabled()) {
@@ -204,9 +217,14 @@ class PowerStabilizerRun {
       f["nutation_decay_rate_per_s"] = nullptr;
       f["nutation_measurement"] = kDcDrive ? "not measured: the drives' stick-slip friction is not in (14.23)"
                                            : "not measured: the elastic platform adds a mode (14.31) not in (14.23)";
-    } else if (meter_.valid()) {
-      f["nutation_frequency_rad_s"] = meter_.angular_frequency();
-      f["nutation_decay_rate_per_s"] = -meter_.growth_rate();
+    } else if (meter_.valid() && fit_.valid()) {
+      // The root of the recurrence fitted to α[k] nearest the continuous root (linear_prediction_fit.hpp):
+      // every sample counts, so the seeded rate noise that drives the loop leaves it unbiased.
+      const std::complex<double> measured = analysis::nearest_root(fit_.roots(), root);
+      f["nutation_frequency_rad_s"] = measured.imag();
+      f["nutation_decay_rate_per_s"] = -measured.real();
+      f["nutation_frequency_rad_s_extrema"] = meter_.angular_frequency();
+      f["nutation_decay_rate_per_s_extrema"] = -meter_.growth_rate();
     } else {
       f["nutation_frequency_rad_s"] = nullptr;
       f["nutation_decay_rate_per_s"] = nullptr;
@@ -279,11 +297,29 @@ class PowerStabilizerRun {
     return divisor * std::max<std::int64_t>(1, static_cast<std::int64_t>(per_period));
   }
 
+  // The fit's order: the sampled loop's non-zero roots (plant, law, commands in flight) and two for a slow
+  // base motion's forced response.
+  static int fit_order(const PowerStabilizerScene& s) {
+    if (kPrecession || kDcDrive || kElastic) return 1;
+    return static_cast<int>(power_stabilizer_sampled(s.op_loops, power_stabilizer_timing(s)).roots.s.size()) + 2;
+  }
+
+  // The sensor errors are the loop's inputs when they are white noise and quantisation sampled once per law
+  // period: a rate gyro's bandwidth filter makes its error depend on the state, and a meter slower than the law
+  // would alias them. Otherwise the fit takes α alone.
+  static int fit_channels(const PowerStabilizerScene& s, std::int64_t meter_every) {
+    if (kPrecession || kDcDrive || kElastic) return 0;
+    if (s.plant.rate_gyro.bandwidth.order != sensors::LowpassParams::Order::kNone) return 0;
+    return meter_every == static_cast<std::int64_t>(s.controller.runtime.control_divisor) ? 4 : 0;
+  }
+
   const PowerStabilizerScene& s_;
   Plant plant_;
   analysis::NutationMeter meter_;
   analysis::PeriodicDrift drift_;
   std::int64_t meter_every_;
+  analysis::LinearPredictionMeter fit_;
+  std::array<double, 4> sensor_error_{};
   msg::ActuatorFrame last_{};
   analysis::RunningStats alpha_, beta_;
   analysis::DrivePeaks peaks_;

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "firmware/fault/sensor_ranges.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_checks.hpp"
 #include "tools/devices/base_motion/base_motion_schema.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_scene.hpp"
@@ -325,6 +326,7 @@ void derive(S& s) {
   }
   auto& c = s.controller;
   c.runtime.tick_period_ns = s.loop.tick_ns;
+  c.runtime.monitor.ranges.rotor_speed_rad_s = firmware::rotor_speed_range_for(s.rpm * 2.0 * std::numbers::pi / 60.0);
   auto& l = c.loops;
   l.H = s.plant.H;
   const double viscous = s.dc_drive() ? s.plant.drive.friction.viscous : 0.0;
