@@ -144,6 +144,8 @@ class TwoRotorStabilizerPlant {
   }
   HeldInputs held_inputs() const { return {dyn_.M1K, dyn_.M2K}; }
   const State& state() const { return x_; }
+  // Sets the state (the loop's linearisation probes sense() with unit states: two_rotor_sampled.cpp).
+  void set_state(const State& x) { x_ = x; }
   const Dynamics& dynamics() const { return dyn_; }
   const TwoRotorPlantParams& params() const { return p_; }
 

@@ -55,7 +55,7 @@ class PowerStabilizerRun {
                                                                 std::llround(s.drift_from_s / s.loop.tick_s()))
                                       : analysis::PeriodicDrift()),
         meter_every_(meter_interval(s)),
-        fit_(first_step_s(s.plant.disturbance) + 0.02, first_step_s(s.plant.disturbance) + s.measure_window_s,
+        fit_(first_step_s(s.plant.disturbance) + 0.02, fit_end_s(s),
              static_cast<double>(meter_every_) * s.loop.tick_s(), fit_order(s), fit_channels(s, meter_every_)),
         window_(static_cast<std::int64_t>(std::min(s.plant.disturbance.t1, s.plant.disturbance.t2) / s.loop.tick_s()),
                 static_cast<std::int64_t>(1.0 / s.loop.tick_s())) {}
@@ -295,6 +295,17 @@ class PowerStabilizerRun {
     if (!(w > 0.0)) return divisor;
     const double per_period = 2.0 * std::numbers::pi / w / (100.0 * s.loop.tick_s() * static_cast<double>(divisor));
     return divisor * std::max<std::int64_t>(1, static_cast<std::int64_t>(per_period));
+  }
+
+  // The fit's window ends with the measurement window or at the next step, whichever comes first: a second
+  // input inside it breaks the recurrence.
+  static double fit_end_s(const PowerStabilizerScene& s) {
+    const auto& d = s.plant.disturbance;
+    const double first = first_step_s(d);
+    double end = first + s.measure_window_s;
+    if (d.M1 != 0.0 && d.t1 > first) end = std::min(end, d.t1);
+    if (d.M2 != 0.0 && d.t2 > first) end = std::min(end, d.t2);
+    return end;
   }
 
   // The fit's order: the sampled loop's non-zero roots (plant, law, commands in flight) and two for a slow

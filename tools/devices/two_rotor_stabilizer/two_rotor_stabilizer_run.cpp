@@ -2,15 +2,22 @@
 // meters — the frames' peak and final angles, the case angles against the steady states M/k of the final
 // disturbance, the law's gain margin; for the gyro frame also a single rotor of spin 2H and case inertia 2B
 // (sim/models/two_rotor_gyro_frame.hpp with σ = s = +1) under the same base motion, disturbance and law
-// (continuous, integrated beside the plant with the plant's step), and the link torque (TR2).
+// (continuous, integrated beside the plant with the plant's step), and the link torque (TR2); the closed
+// loop's nutation measured from β1[k] (a recurrence fitted after the first step, linear_prediction_fit.hpp)
+// beside the continuous root (`_predicted`) and the sampled loop's (`_predicted_sampled`, two_rotor_sampled.hpp).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <complex>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/linear_prediction_fit.hpp"
+#include "tools/devices/two_rotor_stabilizer/two_rotor_sampled.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/two_rotor_stabilizer/two_rotor_stabilizer_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
@@ -62,6 +69,11 @@ class TwoRotorRun {
         single_rk_(single_),
         single_x_(SingleRotor::State::Zero()),
         gain_margin_(firmware::two_rotor_gain_scale_max(s.controller.law)),
+        sampled_(two_rotor_sampled(s)),
+        law_every_(std::max<std::int64_t>(1, static_cast<std::int64_t>(s.controller.runtime.control_divisor))),
+        fit_(first_step_s(s) + 0.02, std::min(first_step_s(s) + 0.02 + s.nutation_window_s, next_step_s(s)),
+             sampled_.timing.period_s,
+             static_cast<int>(sampled_.roots.s.size()) + 2),
         window_(s.loop.ticks() / 2, std::max<std::int64_t>(1, static_cast<std::int64_t>(1.0 / s.loop.tick_s()))) {}
 
   void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
@@ -81,6 +93,8 @@ class TwoRotorRun {
     window_.before_tick(tick, plant_.state(), plant_.held_inputs());
     plant_.advance(tick);
     window_.after_tick(tick, plant_.state());
+    if ((tick + 1) % law_every_ == 0)
+      fit_.add(static_cast<double>(tick + 1) * s_.loop.tick_s(), plant_.value(Axis::kBeta1));
     alpha_peak_ = std::max(alpha_peak_, std::fabs(plant_.value(Axis::kAlpha)));
     gamma_peak_ = std::max(gamma_peak_, std::fabs(plant_.value(Axis::kGamma)));
     ticks_ = tick + 1;
@@ -112,6 +126,26 @@ class TwoRotorRun {
                      {"beta1_expected_rad", M1 / l.k1},
                      {"gain_margin", std::isfinite(gain_margin_) ? nlohmann::json(gain_margin_) : nullptr},
                      {"ticks", ticks_}};
+    // The least-damped oscillatory pair of the closed loop (the cases' nutation under the rate damping): the
+    // continuous root, the sampled loop's, and the one the run shows. The plant's sensors are ideal, so the
+    // recurrence of β1[k] is the loop's exactly (on a base at rest).
+    const auto number_or_null = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
+    f["nutation_decay_rate_per_s_predicted"] = number_or_null(-sampled_.continuous.real());
+    f["nutation_frequency_rad_s_predicted"] = number_or_null(sampled_.continuous.imag());
+    f["nutation_decay_rate_per_s_predicted_sampled"] = number_or_null(-sampled_.sampled.real());
+    f["nutation_frequency_rad_s_predicted_sampled"] = number_or_null(sampled_.sampled.imag());
+    f["sampled_loop_max_abs_z"] = sampled_.roots.max_abs_z;
+    if (fit_.valid() && std::isfinite(sampled_.continuous.real())) {
+      const std::complex<double> m = analysis::nearest_root(fit_.roots(), sampled_.continuous);
+      f["nutation_decay_rate_per_s"] = -m.real();
+      f["nutation_frequency_rad_s"] = m.imag();
+    } else {
+      f["nutation_decay_rate_per_s"] = nullptr;
+      f["nutation_frequency_rad_s"] = nullptr;
+      f["nutation_measurement"] = std::isfinite(sampled_.continuous.real())
+                                      ? "not measured: no disturbance step, or the window ends before enough samples"
+                                      : "not measured: the closed loop has no oscillatory root";
+    }
     if (frame()) {
       f["single_rotor_alpha_peak_rad"] = single_peak_;
       f["single_rotor_alpha_final_rad"] = single_x_[SingleRotor::Model::kAlpha];
@@ -139,6 +173,23 @@ class TwoRotorRun {
 
  private:
   bool frame() const { return s_.plant.kind == plants::TwoRotorPlantKind::kGyroFrame; }
+  // The first step that acts (a zero step excites nothing); +∞ without one.
+  static double first_step_s(const TwoRotorStabilizerScene& s) {
+    const auto& d = s.plant.disturbance;
+    double t = std::numeric_limits<double>::infinity();
+    if (d.M1_Nm != 0.0) t = std::min(t, d.M1_time_s);
+    if (d.M2_Nm != 0.0) t = std::min(t, d.M2_time_s);
+    return t;
+  }
+  // The step after it (the window ends there: a second input breaks the recurrence); +∞ without one.
+  static double next_step_s(const TwoRotorStabilizerScene& s) {
+    const auto& d = s.plant.disturbance;
+    const double first = first_step_s(s);
+    double t = std::numeric_limits<double>::infinity();
+    if (d.M1_Nm != 0.0 && d.M1_time_s > first) t = std::min(t, d.M1_time_s);
+    if (d.M2_Nm != 0.0 && d.M2_time_s > first) t = std::min(t, d.M2_time_s);
+    return t;
+  }
 
   const TwoRotorStabilizerScene& s_;
   Plant plant_;
@@ -146,6 +197,9 @@ class TwoRotorRun {
   dynamics::Rk4<SingleRotor> single_rk_;
   SingleRotor::State single_x_;
   double gain_margin_;
+  TwoRotorSampled sampled_;
+  std::int64_t law_every_;
+  analysis::LinearPredictionMeter fit_;
   msg::ActuatorFrame last_{};
   double alpha_peak_{0.0}, gamma_peak_{0.0}, single_peak_{0.0}, link_{0.0}, link_peak_{0.0};
   std::int64_t ticks_{0};

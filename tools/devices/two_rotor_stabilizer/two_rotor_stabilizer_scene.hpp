@@ -19,6 +19,7 @@ struct TwoRotorStabilizerScene {
   firmware::TwoRotorStabilizerConfig controller;
   int base_axis{2};  // [base] harmonic_axis, 1-based (plant.base.axis is 0-based)
   bool counter_rotating{true};  // two-axis: [gyro] spin
+  double nutation_window_s{2.0};  // [report]: the nutation is fitted over this long after the first step
 };
 
 std::unique_ptr<DeviceScene> read_two_rotor_stabilizer(SceneReader& r);

@@ -1,10 +1,12 @@
 // The keys of a two-rotor stabilizer scene: one field table over TwoRotorStabilizerScene
 // (tools/scene/schema.hpp), the source of the reader, its messages and docs/scenes.md.
+#include <cstdio>
 #include <string>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/dynamics/step_validation.hpp"
 #include "tools/devices/two_rotor_stabilizer/two_rotor_stabilizer_scene.hpp"
+#include "tools/devices/two_rotor_stabilizer/two_rotor_sampled.hpp"
 #include "tools/run/controller_report.hpp"
 #include "tools/scene/schema.hpp"
 
@@ -99,6 +101,10 @@ constexpr schema::Field<S> kFields[] = {
         .when(two_axis, "two_axis"),
     F::number("controller", "torque_limit_Nm", "N m", Range::positive(), "motor torque limit (each motor)",
               GS_NUMBER(controller.law.torque_limit_Nm)),
+    F::number("report", "nutation_window_s", "s", Range::open_closed(0.0, 100.0),
+              "the measured nutation is the root of a recurrence fitted to β1 over this long from 20 ms after the "
+              "first disturbance step (docs/sampled-data.md)",
+              GS_NUMBER(nutation_window_s)),
 };
 
 bool possible(const S& s) {
@@ -113,6 +119,23 @@ std::string plant_step_problem(const S& s) {
   const dynamics::StepCheck step = dynamics::check_step(
       dynamics::Method::kRk4, dynamics::fastest_mode(dyn, 0.0, TwoRotorDynamics::State::Zero()), h_sub);
   return step.ok ? "" : step.message;
+}
+
+// The sampled loop's verdict: "" when stable. A loop the continuous test refuses is the start-up check's
+// (rule on k1); here only the difference is added.
+std::string sampled_problem(const S& s) {
+  const TwoRotorSampled sampled = two_rotor_sampled(s);
+  if (!sampled.roots.stable())
+    return "the sampled loop is unstable: " +
+           analysis::sampled_instability(sampled.roots, sampled.timing, sampled.continuous_stable) +
+           "; lower the gains or the tick, or reduce the latency";
+  if (!sampled.continuous_stable) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "the sampled loop would be stable (|z| = %.6g), but the firmware's start-up check "
+                  "is the continuous test and refuses these gains", sampled.roots.max_abs_z);
+    return buf;
+  }
+  return "";
 }
 
 constexpr schema::Rule<S> kRules[] = {
@@ -130,6 +153,10 @@ constexpr schema::Rule<S> kRules[] = {
      "the plant step resolves the fastest open-loop mode (nutation); the message gives the plant_substeps "
      "needed",
      [](const S& s) -> std::string { return possible(s) ? plant_step_problem(s) : ""; }},
+    {"loop", "latency_ticks",
+     "the loop as it runs is stable: the closed loop sampled at the law's period with the zero-order hold and "
+     "the latency (docs/sampled-data.md), every |z| < 1; says so when the continuous verdict would differ",
+     [](const S& s) -> std::string { return possible(s) ? sampled_problem(s) : ""; }},
 };
 
 // What the controller takes from the plant.
