@@ -22,6 +22,7 @@
 #include "sim/motion/kepler_orbit.hpp"
 #include "sim/motion/prescribed_base_rotation.hpp"
 #include "sim/oracles/schuler_tuning.hpp"
+#include "tests/support/scene_run.hpp"
 #include "tools/commands.hpp"
 #include "tools/run/run_output.hpp"
 
@@ -412,15 +413,9 @@ double kepler_scene_gap(const std::string& extra) {
     EXPECT_NE(at, std::string::npos);
     scene.replace(at, key.size(), extra);
   }
-  tools::RunRequest req;
-  req.scene_path = path;
-  req.scene_text = scene;
-  req.write_outputs = false;
-  req.progress = false;
-  nlohmann::json report;
-  req.report_out = &report;
-  EXPECT_EQ(tools::run_scene(req), 0);
-  const nlohmann::json& f = report["figures"];
+  const testing::SceneRunResult run = testing::run_scene_in_memory(path, scene);
+  EXPECT_EQ(run.rc, 0);
+  const nlohmann::json& f = run.report["figures"];
   std::printf("  kepler scene%s: gap %.3g, Omega %.9g rad/s, orbit %.6g s\n", extra.empty() ? "" : " (gradient)",
               f["kepler_oscillator_gap_max"].get<double>(), f["kepler_Omega_rad_s"].get<double>(),
               f["orbit_period_s"].get<double>());

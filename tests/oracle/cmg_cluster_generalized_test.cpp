@@ -21,6 +21,7 @@
 
 #include <Eigen/Dense>
 
+#include "tests/support/scene_run.hpp"
 #include "tests/support/scene_text.hpp"
 #include "firmware/app/cmg_cluster_controller.hpp"
 #include "firmware/control/cmg_steering.hpp"
@@ -188,17 +189,9 @@ std::string without_key(std::string t, const std::string& key) {
 }
 
 nlohmann::json figures_of(const std::string& path, const std::string& text) {
-  tools::RunRequest req;
-  req.scene_path = path;
-  req.scene_text = text;
-  req.write_outputs = false;
-  req.progress = false;
-  nlohmann::json report;
-  std::string csv;
-  req.report_out = &report;
-  req.csv_out = &csv;
-  EXPECT_EQ(tools::run_scene(req), 0);
-  return report["figures"];
+  const testing::SceneRunResult r = testing::run_scene_in_memory(path, text);
+  EXPECT_EQ(r.rc, 0);
+  return r.report["figures"];
 }
 
 void print(const char* what, const nlohmann::json& f) {

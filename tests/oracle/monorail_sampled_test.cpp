@@ -18,6 +18,7 @@
 // (hω)⁴/120 ≈ 6e-11 per step), the release tilt 0.015° keeps the large-angle terms at (φ²/6) ≈ 1e-8, the
 // CSV's 17 digits and the fit's conditioning (the slowest |z| = 0.9993): measured 2e-7 on the straight, 4e-6
 // in the curve (its frame-rate terms H Ω3 sinφ cosβ at second order); tolerance 1e-4.
+#include "tests/support/scene_run.hpp"
 #include "tests/support/scene_text.hpp"
 #include "tools/devices/monorail/monorail_sampled.hpp"
 
@@ -51,19 +52,11 @@ struct SceneRun {
 };
 
 SceneRun run_text(const std::string& text) {
-  tools::RunRequest req;
-  req.scene_path = kScene;
-  req.scene_text = text;
-  req.write_outputs = false;
-  req.progress = false;
-  nlohmann::json report;
-  std::string csv;
-  req.report_out = &report;
-  req.csv_out = &csv;
-  EXPECT_EQ(tools::run_scene(req), 0);
+  const testing::SceneRunResult run = testing::run_scene_in_memory(kScene, text);
+  EXPECT_EQ(run.rc, 0);
   SceneRun r;
-  r.figures = report["figures"];
-  std::istringstream in(csv);
+  r.figures = run.report["figures"];
+  std::istringstream in(run.csv);
   std::string line;
   std::getline(in, line);  // header: t_s, tilt_rad, ...
   while (std::getline(in, line)) {

@@ -19,6 +19,7 @@
 // by ≈ (hω)⁵/120 per step (frequency error (hω)⁴/120 ≈ 5e-9 relative). The tolerances below are set from these
 // and from the measurement (extrema located by a parabola through three samples: a vertex time error
 // O((hω)² h), amplitude O((hω)⁴)), each stated where it is used.
+#include "tests/support/scene_run.hpp"
 #include "tests/support/scene_text.hpp"
 #include "sim/models/position_gyro_platform.hpp"
 
@@ -432,16 +433,9 @@ using gyrostab::testing::read_text;
 const std::string kScene = GYROSTAB_SOURCE_DIR "/sim/scenes/position-gyro-platform.toml";
 
 TEST(PositionGyroPlatformScenes, ShippedSceneHoldsTheLagSlewsAndDecaysAsPredicted) {
-  tools::RunRequest req;
-  req.scene_path = kScene;
-  req.write_outputs = false;
-  req.progress = false;
-  nlohmann::json report;
-  std::string csv;
-  req.report_out = &report;
-  req.csv_out = &csv;
-  ASSERT_EQ(tools::run_scene(req), 0);
-  const nlohmann::json& f = report["figures"];
+  const testing::SceneRunResult run = testing::run_scene_in_memory(kScene);
+  ASSERT_EQ(run.rc, 0);
+  const nlohmann::json& f = run.report["figures"];
   std::printf("  %s\n", f.dump().c_str());
   const double lag = f["lag_book_16_7_rad"].get<double>();
   // The mean over 0.5 s ending 3.8 s after the step: the transient is down by e^{−2.37·3.3} = 4e-4 and its

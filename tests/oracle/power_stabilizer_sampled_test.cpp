@@ -13,6 +13,7 @@
 //   (d) a platform step first (β carried from 0 towards M1/k1 during the window) moves the measured decay off
 //       the prediction at β = 0 by an amount second order in the step;
 //   (e) the check refuses a loop that is stable in continuous time but not sampled, and says so.
+#include "tests/support/scene_run.hpp"
 #include "tests/support/scene_text.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_sampled.hpp"
 
@@ -44,21 +45,9 @@ using gyrostab::testing::replaced;
 const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
 
 nlohmann::json figures_of(const std::string& path, const std::string& text) {
-  tools::RunRequest req;
-  req.scene_path = path;
-  req.scene_text = text;
-  req.scene_file_root = kScenes;
-  req.write_outputs = false;
-  req.progress = false;
-  nlohmann::json report;
-  std::string csv;
-  req.report_out = &report;
-  req.csv_out = &csv;
-  EXPECT_EQ(tools::run_scene(req), 0);
-  return report["figures"];
+  return testing::figures_of(path, text, kScenes);
 }
 
-double rel(double a, double b) { return std::fabs(a - b) / std::fabs(b); }
 
 TEST(PowerStabilizerSampled, ProbedLawIsTheFirmwareLaw) {
   std::mt19937_64 rng(3);
@@ -132,22 +121,15 @@ TEST(PowerStabilizerSampled, ShippedScenesMeasureTheSampledRoots) {
     SCOPED_TRACE(name);
     const std::string path = kScenes + name + ".toml";
     const nlohmann::json f = figures_of(path, read_text(path));
-    ASSERT_TRUE(f["nutation_decay_rate_per_s"].is_number()) << f.dump();
-    const double decay = f["nutation_decay_rate_per_s"].get<double>(), freq = f["nutation_frequency_rad_s"].get<double>();
-    const double decay_s = f["nutation_decay_rate_per_s_predicted_sampled"].get<double>();
-    const double freq_s = f["nutation_frequency_rad_s_predicted_sampled"].get<double>();
-    const double decay_c = f["nutation_decay_rate_per_s_predicted"].get<double>();
-    const double freq_c = f["nutation_frequency_rad_s_predicted"].get<double>();
-    std::printf("  %s: decay %.7f (sampled %.7f %+.2e, continuous %.7f %+.2e), freq %.6f (sampled %.6f %+.2e, "
-                "continuous %.6f %+.2e)\n", name, decay, decay_s, decay / decay_s - 1.0, decay_c, decay / decay_c - 1.0,
-                freq, freq_s, freq / freq_s - 1.0, freq_c, freq / freq_c - 1.0);
-    EXPECT_LT(rel(decay, decay_s), 1e-3);
-    EXPECT_LT(rel(freq, freq_s), 1e-3);
+    const testing::NutationFigures n = testing::NutationFigures::of(f);
+    n.print(name);
+    EXPECT_LT(std::fabs(n.decay_vs_sampled()), 1e-3);
+    EXPECT_LT(std::fabs(n.freq_vs_sampled()), 1e-3);
     if (std::string(name) == "power-stabilizer") {
-      EXPECT_LT(rel(decay, decay_s), 1e-5);
-      EXPECT_LT(rel(freq, freq_s), 1e-5);
-      EXPECT_GT(rel(decay, decay_c), 2.5e-3) << decay << " vs continuous " << decay_c;
-      EXPECT_GT(rel(freq, freq_c), 2.5e-3) << freq << " vs continuous " << freq_c;
+      EXPECT_LT(std::fabs(n.decay_vs_sampled()), 1e-5);
+      EXPECT_LT(std::fabs(n.freq_vs_sampled()), 1e-5);
+      EXPECT_GT(std::fabs(n.decay_vs_continuous()), 2.5e-3);
+      EXPECT_GT(std::fabs(n.freq_vs_continuous()), 2.5e-3);
     }
     EXPECT_LT(f["sampled_loop_max_abs_z"].get<double>(), 1.0);
     // The sampled steady state is the continuous one (a zero-order hold keeps equilibria).
@@ -170,18 +152,11 @@ TEST(PowerStabilizerSampled, RootsIdentifiedFromTheShippedLoopAreTheSampledRoots
   text = replaced(text, "rate_noise_density = 1e-4", "rate_noise_density = 0.0");
   text = replaced(text, "encoder_counts_per_rev = 262144", "encoder_counts_per_rev = 1073741824");
   text = replaced(text, "record_every = 5", "record_every = 1");
-  tools::RunRequest req;
-  req.scene_path = path;
-  req.scene_text = text;
-  req.write_outputs = false;
-  req.progress = false;
-  nlohmann::json report;
-  std::string csv;
-  req.report_out = &report;
-  req.csv_out = &csv;
-  ASSERT_EQ(tools::run_scene(req), 0);
+  const testing::SceneRunResult run = testing::run_scene_in_memory(path, text);
+  ASSERT_EQ(run.rc, 0);
+  const nlohmann::json& report = run.report;
   std::vector<double> alpha;
-  std::istringstream in(csv);
+  std::istringstream in(run.csv);
   std::string line;
   std::getline(in, line);
   while (std::getline(in, line)) {

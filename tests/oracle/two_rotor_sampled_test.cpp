@@ -14,6 +14,7 @@
 //       time but not sampled with one tick of latency (refused, with |z|), and accepted without the latency;
 //       the two-axis stabilizer past P6's boundary is stable sampled (the sampling damps that loop) but refused,
 //       the message saying both.
+#include "tests/support/scene_run.hpp"
 #include "tests/support/scene_text.hpp"
 
 #include <gtest/gtest.h>
@@ -35,18 +36,7 @@ using gyrostab::testing::replaced;
 const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
 
 nlohmann::json figures_of(const std::string& path, const std::string& text) {
-  tools::RunRequest req;
-  req.scene_path = path;
-  req.scene_text = text;
-  req.scene_file_root = kScenes;
-  req.write_outputs = false;
-  req.progress = false;
-  nlohmann::json report;
-  std::string csv;
-  req.report_out = &report;
-  req.csv_out = &csv;
-  EXPECT_EQ(tools::run_scene(req), 0);
-  return report["figures"];
+  return testing::figures_of(path, text, kScenes);
 }
 
 std::complex<double> polyval(const firmware::TwoRotorPoly& p, std::complex<double> x) {
@@ -92,20 +82,13 @@ TEST(TwoRotorSampled, ShippedScenesMeasureTheSampledRoots) {
     SCOPED_TRACE(name);
     const std::string path = kScenes + name + ".toml";
     const nlohmann::json f = figures_of(path, read_text(path));
-    ASSERT_TRUE(f["nutation_decay_rate_per_s"].is_number()) << f.dump();
-    const double decay = f["nutation_decay_rate_per_s"].get<double>(), freq = f["nutation_frequency_rad_s"].get<double>();
-    const double decay_s = f["nutation_decay_rate_per_s_predicted_sampled"].get<double>();
-    const double freq_s = f["nutation_frequency_rad_s_predicted_sampled"].get<double>();
-    const double decay_c = f["nutation_decay_rate_per_s_predicted"].get<double>();
-    const double freq_c = f["nutation_frequency_rad_s_predicted"].get<double>();
-    std::printf("  %s: decay %.7f (sampled %.7f %+.2e, continuous %.7f %+.2e), freq %.6f (sampled %.6f %+.2e, "
-                "continuous %.6f %+.2e)\n", name, decay, decay_s, decay / decay_s - 1.0, decay_c, decay / decay_c - 1.0,
-                freq, freq_s, freq / freq_s - 1.0, freq_c, freq / freq_c - 1.0);
-    EXPECT_LT(std::fabs(decay / decay_s - 1.0), 1e-3);
-    EXPECT_LT(std::fabs(freq / freq_s - 1.0), 1e-3);
-    EXPECT_LT(std::fabs(decay / decay_s - 1.0), 1e-5);
-    EXPECT_LT(std::fabs(freq / freq_s - 1.0), 1e-5);
-    EXPECT_GT(std::max(std::fabs(decay / decay_c - 1.0), std::fabs(freq / freq_c - 1.0)), 5e-4);
+    const testing::NutationFigures n = testing::NutationFigures::of(f);
+    n.print(name);
+    EXPECT_LT(std::fabs(n.decay_vs_sampled()), 1e-3);
+    EXPECT_LT(std::fabs(n.freq_vs_sampled()), 1e-3);
+    EXPECT_LT(std::fabs(n.decay_vs_sampled()), 1e-5);
+    EXPECT_LT(std::fabs(n.freq_vs_sampled()), 1e-5);
+    EXPECT_GT(std::max(std::fabs(n.decay_vs_continuous()), std::fabs(n.freq_vs_continuous())), 5e-4);
     EXPECT_LT(f["sampled_loop_max_abs_z"].get<double>(), 1.0);
   }
 }

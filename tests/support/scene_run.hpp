@@ -1,0 +1,73 @@
+// Runs a scene in memory for a test — the shipped file, or a variant's text — and keeps what it reports: the
+// exit code, report.json's content and signals.csv's. Nothing is written.
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "tools/commands.hpp"
+
+namespace gyrostab::testing {
+
+struct SceneRunResult {
+  int rc{-1};
+  nlohmann::json report;
+  std::string csv;
+};
+
+// `text` empty: the file at `path`; else the text, `path` naming it and `file_root` the directory its data
+// files resolve against.
+inline SceneRunResult run_scene_in_memory(const std::string& path, const std::string& text = "",
+                                          const std::string& file_root = "") {
+  tools::RunRequest req;
+  req.scene_path = path;
+  req.scene_text = text;
+  req.scene_file_root = file_root;
+  req.write_outputs = false;
+  req.progress = false;
+  SceneRunResult r;
+  req.report_out = &r.report;
+  req.csv_out = &r.csv;
+  r.rc = tools::run_scene(req);
+  return r;
+}
+
+// The report's "figures" of a run that must succeed.
+inline nlohmann::json figures_of(const std::string& path, const std::string& text = "",
+                                 const std::string& file_root = "") {
+  const SceneRunResult r = run_scene_in_memory(path, text, file_root);
+  EXPECT_EQ(r.rc, 0) << path;
+  return r.report["figures"];
+}
+
+// A report's nutation figures: measured, the sampled loop's and the continuous loop's (docs/sampled-data.md),
+// with their relative differences.
+struct NutationFigures {
+  double decay{0}, freq{0}, decay_sampled{0}, freq_sampled{0}, decay_continuous{0}, freq_continuous{0};
+
+  static NutationFigures of(const nlohmann::json& f) {
+    EXPECT_TRUE(f["nutation_decay_rate_per_s"].is_number()) << f.dump();
+    if (!f["nutation_decay_rate_per_s"].is_number()) return {};
+    return {f["nutation_decay_rate_per_s"].get<double>(),
+            f["nutation_frequency_rad_s"].get<double>(),
+            f["nutation_decay_rate_per_s_predicted_sampled"].get<double>(),
+            f["nutation_frequency_rad_s_predicted_sampled"].get<double>(),
+            f["nutation_decay_rate_per_s_predicted"].get<double>(),
+            f["nutation_frequency_rad_s_predicted"].get<double>()};
+  }
+  double decay_vs_sampled() const { return decay / decay_sampled - 1.0; }
+  double freq_vs_sampled() const { return freq / freq_sampled - 1.0; }
+  double decay_vs_continuous() const { return decay / decay_continuous - 1.0; }
+  double freq_vs_continuous() const { return freq / freq_continuous - 1.0; }
+  void print(const char* name) const {
+    std::printf("  %s: decay %.7f (sampled %.7f %+.2e, continuous %.7f %+.2e), freq %.6f (sampled %.6f %+.2e, "
+                "continuous %.6f %+.2e)\n", name, decay, decay_sampled, decay_vs_sampled(), decay_continuous,
+                decay_vs_continuous(), freq, freq_sampled, freq_vs_sampled(), freq_continuous, freq_vs_continuous());
+  }
+};
+
+}  // namespace gyrostab::testing
