@@ -1,9 +1,10 @@
 // What a position-gyro platform run reports: the plant of sim/plants/position_gyro_platform_plant.hpp with its
 // meters — the steady lag (δ − α) before the slew and during it against (16.7) M1^SP/k, the platform's and the
-// gyro frame's slew rates against (16.7) −M2^K/H, the decay rate and frequency of the inner gimbal's
-// oscillation after the disturbance step (from the extrema of β: with a platform mode faster than the nutation
-// the slowest mode is the gyro's nutation, which the pick-off barely shows) against the dominant root of (16.8)
-// and of the sampled loop,
+// gyro frame's slew rates against (16.7) −M2^K/H, the closed loop's dominant root after the disturbance step —
+// fitted to the inner gimbal's angle β[k] (with a platform mode faster than the nutation the slowest mode is
+// the gyro's nutation, which the pick-off barely shows) with the pick-off's noise as an input
+// (sim/analysis/linear_prediction_fit.hpp), and from β's extrema — against the dominant root of (16.8) and of
+// the sampled loop,
 // the gain band of (16.9) — the half-step error estimate, the CSV columns, and the scene's plant and
 // controller for the run modes.
 #include <algorithm>
@@ -17,6 +18,8 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/extrema_meter.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/linear_prediction_fit.hpp"
+#include "sim/analysis/sampled_loop_roots.hpp"
 #include "sim/oracles/position_gyro_platform_roots.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/position_gyro_platform/position_gyro_platform_scene.hpp"
@@ -60,7 +63,13 @@ class PositionGyroPlatformRun {
                 std::max<std::int64_t>(1, static_cast<std::int64_t>(0.5 / s.loop.tick_s()))),
         fit_first_(s.plant.disturbance_tick + ticks_of(s.fit_delay_s)),
         fit_end_(static_cast<std::int64_t>(s.controller.law.slew_start_tick)),
-        extrema_(1e-12) {
+        extrema_(1e-12),
+        // From 20 ms after the step to the slew (another input): β at the law's rate, the pick-off noise the
+        // law read as the input (when the law runs every tick: a slower law reads only some of the draws).
+        divisor_(std::max<std::int64_t>(1, static_cast<std::int64_t>(s.controller.runtime.control_divisor))),
+        lp_(static_cast<double>(s.plant.disturbance_tick) * s.loop.tick_s() + 0.02,
+            static_cast<double>(s.controller.law.slew_start_tick) * s.loop.tick_s(),
+            s.controller.runtime.control_period_s(), sampled_order(s), divisor_ == 1 ? 1 : 0) {
     const std::int64_t w = ticks_of(s.lag_window_s);
     const auto start = static_cast<std::int64_t>(s.controller.law.slew_start_tick);
     const auto stop = static_cast<std::int64_t>(s.controller.law.slew_stop_tick);
@@ -70,7 +79,10 @@ class PositionGyroPlatformRun {
     rate_end_ = stop;
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void sense(std::int64_t tick, msg::SensorFrame& f) {
+    plant_.sense(tick, f);
+    pickoff_error_ = f.gimbal_angle_rad[msg::kAxis1] - plant_.pickoff_rad();
+  }
   void actuate(const msg::ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
@@ -87,6 +99,7 @@ class PositionGyroPlatformRun {
     const double e = plant_.pickoff_rad();
     pickoff_max_ = std::max(pickoff_max_, std::fabs(e));
     if (k >= fit_first_ && k < fit_end_) extrema_.add(t, plant_.beta_rad());
+    if (k % divisor_ == 0) lp_.add(t, plant_.beta_rad(), &pickoff_error_);
     lag_before_.add(k, e);
     lag_slewing_.add(k, e);
     if (k == rate_first_) {
@@ -147,15 +160,29 @@ class PositionGyroPlatformRun {
         oracles::platform_dominant_root(oracles::platform_sampled_roots(law.plant, law.k, Tc, tau));
     f["dominant_root_16_8"] = root_json(rc);
     f["dominant_root_sampled"] = root_json(rs);
+    f["decay_rate_per_s_predicted"] = -rc.real();
+    f["frequency_rad_s_predicted"] = rc.imag();
+    f["decay_rate_per_s_predicted_sampled"] = -rs.real();
+    f["frequency_rad_s_predicted_sampled"] = rs.imag();
     const int n = extrema_.count();
     f["extrema"] = n;
     if (n >= 4) {
       const double eq = extrema_.equilibrium(n - 3);
       const double sigma = std::log(std::fabs(extrema_.value(0) - eq) / std::fabs(extrema_.value(n - 1) - eq)) /
                            (extrema_.time(n - 1) - extrema_.time(0));
-      f["dominant_root_measured"] = root_json({-sigma, 2.0 * std::numbers::pi / extrema_.period()});
+      f["dominant_root_extrema"] = root_json({-sigma, 2.0 * std::numbers::pi / extrema_.period()});
+    } else {
+      f["dominant_root_extrema"] = nullptr;
+    }
+    if (lp_.valid()) {
+      const std::complex<double> m = analysis::nearest_root(lp_.roots(), rc);
+      f["dominant_root_measured"] = root_json(m);
+      f["decay_rate_per_s"] = -m.real();
+      f["frequency_rad_s"] = m.imag();
     } else {
       f["dominant_root_measured"] = nullptr;
+      f["decay_rate_per_s"] = nullptr;
+      f["frequency_rad_s"] = nullptr;
     }
     return f;
   }
@@ -173,11 +200,23 @@ class PositionGyroPlatformRun {
   std::int64_t ticks_of(double t) const { return static_cast<std::int64_t>(std::llround(t / s_.loop.tick_s())); }
   double lag_book() const { return s_.plant.disturbance_Nm / s_.controller.law.k; }
 
+  // The fit's order: the sampled loop's non-zero roots and two spare.
+  static int sampled_order(const PositionGyroPlatformScene& s) {
+    const firmware::PositionGyroPlatformParams& law = s.controller.law;
+    const double tau = static_cast<double>(law.latency_ticks) * s.loop.tick_s();
+    return static_cast<int>(
+               oracles::platform_sampled_roots(law.plant, law.k, s.controller.runtime.control_period_s(), tau).size()) +
+           2;
+  }
+
   const PositionGyroPlatformScene& s_;
   Plant plant_;
   analysis::HalfStepWindow<Plant::Model, Plant::Inputs> window_;
   std::int64_t fit_first_, fit_end_;
   analysis::ExtremaMeter<64> extrema_;
+  std::int64_t divisor_;
+  analysis::LinearPredictionMeter lp_;
+  double pickoff_error_{0.0};
   WindowMean lag_before_{}, lag_slewing_{};
   std::int64_t rate_first_{0}, rate_end_{0};
   double delta_first_{0.0}, delta_end_{0.0}, alpha_first_{0.0}, alpha_end_{0.0};
