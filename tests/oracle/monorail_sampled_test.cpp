@@ -14,6 +14,8 @@
 //       and 0.8 % off. What is left is the transient (each window is the last second of a plateau 10-11 s
 //       long; the slowest mode at 0.67-0.69/s leaves e^-7 ≈ 1e-3 of the step) and the seeded noise's mean
 //       over one second: measured 3.5e-4, 4.8e-4 (gust), 7.4e-4, 9.2e-4 (curve).
+//   (f) the run's measured release decay (the fit of φ[k] with the sensor errors as inputs) against the sampled
+//       slowest root: +4.3e-4 from the shipped 0.5° release, second order in the release tilt.
 // Tolerance (c): the run integrates with RK4 at the 1 ms tick (modes ≤ 9.3 rad/s: a relative error
 // (hω)⁴/120 ≈ 6e-11 per step), the release tilt 0.015° keeps the large-angle terms at (φ²/6) ≈ 1e-8, the
 // CSV's 17 digits and the fit's conditioning (the slowest |z| = 0.9993): measured 2e-7 on the straight, 4e-6
@@ -127,7 +129,7 @@ TEST(MonorailSampled, ContinuousLimitIsTheCharacteristicQuartic) {
 
 TEST(MonorailSampled, ShippedSceneLoopHasTheSampledRoots) {
   std::string base = read_text(kScene);
-  base = replaced(base, "phi0_deg = 1.5 ", "phi0_deg = 0.015 ");
+  base = replaced(base, "phi0_deg = 0.5 ", "phi0_deg = 0.015 ");
   base = replaced(base, "M1 = 300 ", "M1 = 0 ");
   base = replaced(base, "tilt_noise_rad = 1e-4", "tilt_noise_rad = 0");
   base = replaced(base, "tilt_rate_noise_density = 1e-4", "tilt_rate_noise_density = 0");
@@ -176,6 +178,29 @@ TEST(MonorailSampled, ShippedSceneSteadyFiguresAreTheSampledFixedPoint) {
                       r.figures["gust_case_angle_rad_predicted"].get<double>() - 1.0), 4e-3);
   EXPECT_GT(std::fabs(r.figures["curve_case_angle_rad"].get<double>() /
                       r.figures["curve_case_angle_rad_predicted"].get<double>() - 1.0), 4e-3);
+}
+
+// (f) The run's own measurement of the release: `decay_rate_per_s` is the slowest root of the recurrence fitted
+// to φ[k] from 20 ms to the gust, with the frames' errors (tilt and rate noise, encoder counts) as inputs. On
+// the shipped scene (released from 0.5°) it is the sampled root to +4.3e-4 (tolerance 1e-3) while the
+// continuous root misses by 2.6e-3; what is left is the loop's own nonlinearity — second order in the release
+// tilt: 1.0° gives +1.63e-3 (ratio 3.8 for twice the tilt, ≥ 3.5 asserted), 0.015° gives 1.5e-7.
+TEST(MonorailSampled, ShippedReleaseMeasuresTheSampledSlowestRoot) {
+  const auto error_at = [](const std::string& text, double* continuous) {
+    const SceneRun r = run_text(text);
+    const double d = r.figures["decay_rate_per_s"].get<double>();
+    if (continuous != nullptr) *continuous = d / r.figures["decay_rate_per_s_predicted"].get<double>() - 1.0;
+    return d / r.figures["decay_rate_per_s_predicted_sampled"].get<double>() - 1.0;
+  };
+  double vs_continuous = 0.0;
+  const std::string shipped = read_text(kScene);
+  const double e05 = error_at(shipped, &vs_continuous);
+  const double e10 = error_at(replaced(shipped, "phi0_deg = 0.5 ", "phi0_deg = 1.0 "), nullptr);
+  std::printf("  release decay against the sampled root: 0.5 deg %+.3e (continuous %+.3e), 1.0 deg %+.3e\n", e05,
+              vs_continuous, e10);
+  EXPECT_LT(std::fabs(e05), 1e-3);
+  EXPECT_GT(std::fabs(vs_continuous), 1.5e-3);
+  EXPECT_GT(e10 / e05, 3.5);
 }
 
 TEST(MonorailSampled, CheckRefusesALoopStableOnlyInContinuousTime) {

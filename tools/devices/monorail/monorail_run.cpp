@@ -5,6 +5,7 @@
 // k, the decay rates of (14.3)/(14.6), the CSV columns, the half-step error estimate, and the scene's plant
 // and controller for the run modes.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -14,6 +15,7 @@
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/analysis/running_stats.hpp"
 #include "sim/analysis/window_mean.hpp"
 #include "tools/devices/monorail/monorail_curve.hpp"
@@ -61,7 +63,10 @@ class MonorailRun {
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
         settle_tick_(tick_at(s.settle_s)),
-        window_(first_load_tick(), static_cast<std::int64_t>(1.0 / s.loop.tick_s())) {
+        window_(first_load_tick(), static_cast<std::int64_t>(1.0 / s.loop.tick_s())),
+        divisor_(std::max<std::int64_t>(1, static_cast<std::int64_t>(s.controller.runtime.control_divisor))),
+        release_fit_(0.02, release_end_s(s), s.loop.tick_s() * static_cast<double>(divisor_), release_fit_order(s),
+                     divisor_ == 1 ? 4 : 0) {
     const motion::Gust& g = s.plant.track.gust;
     const motion::CurveProfile& c = s.plant.track.curve;
     gust_window_ = g.M1 != 0.0
@@ -73,7 +78,14 @@ class MonorailRun {
     set_window(curve_window_, curve_tilt_, curve_case_);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void sense(std::int64_t tick, msg::SensorFrame& f) {
+    plant_.sense(tick, f);
+    // What the frame got wrong (noise, encoder counts): the loop's inputs for the release's fit.
+    sensor_error_[0] = f.carrier_angle_rad[msg::kRoll] - plant_.tilt_rad();
+    sensor_error_[1] = f.carrier_rate_rad_s[msg::kRoll] - plant_.tilt_rate_rad_s();
+    sensor_error_[2] = f.gimbal_angle_rad[msg::kAxis2] - plant_.case_angle_rad();
+    sensor_error_[3] = f.gimbal_rate_rad_s[msg::kAxis2] - plant_.case_rate_rad_s();
+  }
   void actuate(const msg::ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
@@ -93,6 +105,7 @@ class MonorailRun {
     curve_tilt_.add(now, phi);
     curve_case_.add(now, beta);
     if (overturned_tick_ < 0 && plant_.overturned()) overturned_tick_ = now;
+    if (now % divisor_ == 0) release_fit_.add(static_cast<double>(now) * s_.loop.tick_s(), phi, sensor_error_.data());
     ticks_ = now;
   }
   bool finite() const { return plant_.finite(); }
@@ -163,6 +176,19 @@ class MonorailRun {
         {"statistics_from_s", s_.settle_s},
         {"ticks", ticks_}};
     f["decay_rate_per_s_predicted_sampled"] = straight_sampled.decay_rate_per_s;
+    // The release from phi0 on the straight, before the first load: the slowest mode of the recurrence fitted
+    // to φ[k] with the frames' errors as inputs (linear_prediction_fit.hpp).
+    if (release_fit_.valid() && s_.plant.track.curve(0.0) == 0.0) {
+      double slowest = -std::numeric_limits<double>::infinity();
+      for (const std::complex<double>& r : straight_sampled.roots.s) slowest = std::max(slowest, r.real());
+      std::complex<double> want{slowest, 0.0};
+      for (const std::complex<double>& r : straight_sampled.roots.s)
+        if (r.real() == slowest) want = {r.real(), std::fabs(r.imag())};
+      const std::complex<double> m = analysis::nearest_root(release_fit_.roots(), want);
+      f["decay_rate_per_s"] = -m.real();
+    } else {
+      f["decay_rate_per_s"] = nullptr;
+    }
     f["curve_decay_rate_per_s_predicted_sampled"] = curve_sampled.decay_rate_per_s;
     f["sampled_loop_max_abs_z"] = std::max(straight_sampled.roots.max_abs_z, curve_sampled.roots.max_abs_z);
     f["gust_lean_rad_predicted_sampled"] = predicted_sampled(gust_window_, timing, 0);
@@ -194,6 +220,21 @@ class MonorailRun {
     tilt.from = case_angle.from = w.active ? tick_at(w.from_s) : 0;
     tilt.to = case_angle.to = w.active ? tick_at(w.to_s) : 0;
   }
+  // The release's window ends at the first load (gust or curve), 20 s at most.
+  static double release_end_s(const MonorailScene& s) {
+    const motion::Gust& g = s.plant.track.gust;
+    const motion::CurveProfile& c = s.plant.track.curve;
+    double t = std::min(20.0, s.loop.duration_s);
+    if (g.M1 != 0.0) t = std::min(t, g.start_s);
+    if (c.Omega3 != 0.0) t = std::min(t, c.start_s);
+    return t;
+  }
+  static int release_fit_order(const MonorailScene& s) {
+    const MonorailSampled m = monorail_sampled(s.plant.car, s.controller, 0.0,
+                                               monorail_timing(s.controller, s.loop.tick_s(), s.loop.latency_ticks));
+    return static_cast<int>(m.roots.s.size()) + 2;
+  }
+
   std::int64_t first_load_tick() const {
     const motion::Gust& g = s_.plant.track.gust;
     const motion::CurveProfile& c = s_.plant.track.curve;
@@ -250,6 +291,9 @@ class MonorailRun {
   std::int64_t overturned_tick_{-1};
   std::int64_t ticks_{0};
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
+  std::int64_t divisor_;
+  analysis::LinearPredictionMeter release_fit_;
+  std::array<double, 4> sensor_error_{};
 };
 
 struct MonorailTraits {
