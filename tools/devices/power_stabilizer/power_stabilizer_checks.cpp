@@ -60,6 +60,15 @@ std::complex<double> predicted_nutation(const firmware::PowerStabilizerConfig& l
   return nutation_root<4>(c);
 }
 
+NutationWindow nutation_window(const plants::PowerDisturbance& d, double window_s) {
+  NutationWindow w;
+  w.step_s = d.M2 != 0.0 && d.t2 > 0.0 ? d.t2 : first_step_s(d);
+  w.end_s = w.step_s + window_s;
+  if (d.M1 != 0.0 && d.t1 > w.step_s) w.end_s = std::min(w.end_s, d.t1);
+  if (d.M2 != 0.0 && d.t2 > w.step_s) w.end_s = std::min(w.end_s, d.t2);
+  return w;
+}
+
 double first_step_s(const plants::PowerDisturbance& d) {
   const bool s1 = d.M1 != 0.0 && d.t1 > 0.0, s2 = d.M2 != 0.0 && d.t2 > 0.0;
   if (s1 && s2) return std::min(d.t1, d.t2);

@@ -33,8 +33,17 @@ std::vector<std::string> power_stabilizer_plant_rules();
 // The root with the largest |Im|; Im reported ≥ 0.
 std::complex<double> predicted_nutation(const firmware::PowerStabilizerConfig& l);
 
-// When the nutation meter starts: the first disturbance step that is one (a torque applied from t = 0 is a
-// load the loop starts with, e.g. the hold of [initial] beta0_deg, not a step).
+// The first disturbance step that is one (a torque applied from t = 0 is a load the loop starts with, e.g.
+// the hold of [initial] beta0_deg, not a step).
 double first_step_s(const plants::PowerDisturbance& d);
+
+// When the nutation is measured: after the inner-axis step (M2) if there is one — it moves α, which enters no
+// equation, so the loop stays at one operating point — else after the first step. The window ends at the next
+// step (a second input breaks the fitted recurrence) or after `window_s`.
+struct NutationWindow {
+  double step_s{0.0};  // the step that excites the nutation [s]
+  double end_s{0.0};   // [s]
+};
+NutationWindow nutation_window(const plants::PowerDisturbance& d, double window_s);
 
 }  // namespace gyrostab::tools

@@ -77,6 +77,10 @@ void check_operating_points(SceneReader& r, PowerStabilizerScene& s, const Plant
   const double M1 = s.plant.disturbance.M1;
   if (l.output == firmware::PowerStabilizerOutput::kTorque && l.k1 > 0.0) points[1] = M1 / l.k1;
   if (l.output == firmware::PowerStabilizerOutput::kBackEmfVoltage && l.r > 0.0) points[1] = M1 / (l.r * l.s);
+  const plants::PowerDisturbance& d = s.plant.disturbance;
+  const bool loaded_before = M1 != 0.0 && d.t1 < nutation_window(d, s.measure_window_s).step_s;
+  s.measure_beta_rad = loaded_before && std::abs(points[1]) < 0.5 * std::numbers::pi ? points[1] : beta0;
+  s.measure_loops = loops_at(plant, l, s.measure_beta_rad);
   for (int i = 0; i < 2; ++i) {
     const double beta = points[i];
     if (beta == 0.0 || (i == 1 && std::abs(beta - points[0]) < 1e-9)) continue;  // held at β0: said once

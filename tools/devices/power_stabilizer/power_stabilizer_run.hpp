@@ -1,6 +1,8 @@
 // What a power stabilizer run reports: the plant of sim/plants/power_stabilizer_plant.hpp with its meters —
-// the closed loop's nutation frequency and decay rate measured from α'(t) after the first disturbance step
-// (beside the roots of (14.23)/(14.29): `_predicted`), the steady deflections beside (14.21), the angles' and
+// the closed loop's nutation frequency and decay rate measured after the inner-axis step (else the first step:
+// power_stabilizer_checks.hpp, nutation_window) by a recurrence fitted to α[k] (beside the roots of
+// (14.23)/(14.29) at that window's operating point, `_predicted`, and of the sampled loop,
+// `_predicted_sampled`), the steady deflections beside (14.21), the angles' and
 // the drives' peaks, the periodic drift over long runs, the half-step error estimate — the CSV columns and
 // the report blocks. One template over the plant's options; the variants are instantiated in
 // power_stabilizer_{rigid,dc,elastic,precession}.cpp, one translation unit per group.
@@ -50,12 +52,13 @@ class PowerStabilizerRun {
   explicit PowerStabilizerRun(const PowerStabilizerScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
-        meter_(first_step_s(s.plant.disturbance) + 0.02, first_step_s(s.plant.disturbance) + s.measure_window_s),
+        nutation_window_(nutation_window(s.plant.disturbance, s.measure_window_s)),
+        meter_(nutation_window_.step_s + 0.02, nutation_window_.end_s),
         drift_(s.drift_period_s > 0.0 ? analysis::PeriodicDrift(4, std::llround(s.drift_period_s / s.loop.tick_s()),
                                                                 std::llround(s.drift_from_s / s.loop.tick_s()))
                                       : analysis::PeriodicDrift()),
         meter_every_(meter_interval(s)),
-        fit_(first_step_s(s.plant.disturbance) + 0.02, fit_end_s(s),
+        fit_(nutation_window_.step_s + 0.02, nutation_window_.end_s,
              static_cast<double>(meter_every_) * s.loop.tick_s(), fit_order(s), fit_channels(s, meter_every_)),
         window_(static_cast<std::int64_t>(std::min(s.plant.disturbance.t1, s.plant.disturbance.t2) / s.loop.tick_s()),
                 static_cast<std::int64_t>(1.0 / s.loop.tick_s())) {}
@@ -151,7 +154,7 @@ class PowerStabilizerRun {
   nlohmann::json figures() const {
     const auto& l = s_.controller.loops;
     const auto& dist = s_.plant.disturbance;
-    const std::complex<double> root = predicted_nutation(s_.op_loops);
+    const std::complex<double> root = predicted_nutation(s_.measure_loops);
     const firmware::GainCheck g = firmware::check_power_stabilizer_gains(l);
     nlohmann::json f{{"nutation_frequency_rad_s_predicted", root.imag()},
                      {"nutation_decay_rate_per_s_predicted", -root.real()},
@@ -163,11 +166,12 @@ class PowerStabilizerRun {
                      {"open_loop_nutation_rad_s", s_.plant.H / std::sqrt(l.A * l.B)}};
     // The same loop as the `_predicted` figures, sampled as the closed loop runs it (hold, period, latency):
     // power_stabilizer_sampled.hpp, docs/sampled-data.md.
-    const PowerStabilizerSampled sampled = power_stabilizer_sampled(s_.op_loops, power_stabilizer_timing(s_));
+    const PowerStabilizerSampled sampled = power_stabilizer_sampled(s_.measure_loops, power_stabilizer_timing(s_));
     f["nutation_frequency_rad_s_predicted_sampled"] = sampled.nutation.imag();
     f["nutation_decay_rate_per_s_predicted_sampled"] = -sampled.nutation.real();
     f["sampled_loop_max_abs_z"] = sampled.roots.max_abs_z;
-    const Eigen::Vector2d steady = power_stabilizer_sampled_steady(s_.op_loops, sampled.timing, dist.M1, dist.M2);
+    const Eigen::Vector2d steady = power_stabilizer_sampled_steady(
+        s_.op_loops, power_stabilizer_timing(s_), dist.M1, dist.M2);
     const auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
     f["steady_alpha_rad_predicted_sampled"] = finite_or_null(steady[0]);
     f["steady_beta_rad_predicted_sampled"] = finite_or_null(steady[1]);
@@ -208,6 +212,10 @@ class PowerStabilizerRun {
     // elastic platform's extra mode make the response something else, and (14.23)'s roots do not model them:
     // there the measured figures are withheld (null) with the reason, never reported wrong.
     if (s_.plant.beta0 != 0.0) f["operating_point_beta_rad"] = s_.plant.beta0;
+    // Where the nutation is measured (nutation_window) and the loop the nutation predictions linearise.
+    f["nutation_window_from_s"] = nutation_window_.step_s + 0.02;
+    f["nutation_window_to_s"] = nutation_window_.end_s;
+    f["nutation_operating_point_beta_rad"] = s_.measure_beta_rad;
     if (kPrecession) {
       f["nutation_frequency_rad_s"] = nullptr;
       f["nutation_decay_rate_per_s"] = nullptr;
@@ -291,28 +299,17 @@ class PowerStabilizerRun {
   // count the encoder's one-count torque jitter near each turning point as extrema.
   static std::int64_t meter_interval(const PowerStabilizerScene& s) {
     const auto divisor = static_cast<std::int64_t>(s.controller.runtime.control_divisor);
-    const double w = predicted_nutation(s.op_loops).imag();
+    const double w = predicted_nutation(s.measure_loops).imag();
     if (!(w > 0.0)) return divisor;
     const double per_period = 2.0 * std::numbers::pi / w / (100.0 * s.loop.tick_s() * static_cast<double>(divisor));
     return divisor * std::max<std::int64_t>(1, static_cast<std::int64_t>(per_period));
-  }
-
-  // The fit's window ends with the measurement window or at the next step, whichever comes first: a second
-  // input inside it breaks the recurrence.
-  static double fit_end_s(const PowerStabilizerScene& s) {
-    const auto& d = s.plant.disturbance;
-    const double first = first_step_s(d);
-    double end = first + s.measure_window_s;
-    if (d.M1 != 0.0 && d.t1 > first) end = std::min(end, d.t1);
-    if (d.M2 != 0.0 && d.t2 > first) end = std::min(end, d.t2);
-    return end;
   }
 
   // The fit's order: the sampled loop's non-zero roots (plant, law, commands in flight) and two for a slow
   // base motion's forced response.
   static int fit_order(const PowerStabilizerScene& s) {
     if (kPrecession || kDcDrive || kElastic) return 1;
-    return static_cast<int>(power_stabilizer_sampled(s.op_loops, power_stabilizer_timing(s)).roots.s.size()) + 2;
+    return static_cast<int>(power_stabilizer_sampled(s.measure_loops, power_stabilizer_timing(s)).roots.s.size()) + 2;
   }
 
   // The sensor errors are the loop's inputs when they are white noise and quantisation sampled once per law
@@ -326,6 +323,7 @@ class PowerStabilizerRun {
 
   const PowerStabilizerScene& s_;
   Plant plant_;
+  NutationWindow nutation_window_;
   analysis::NutationMeter meter_;
   analysis::PeriodicDrift drift_;
   std::int64_t meter_every_;

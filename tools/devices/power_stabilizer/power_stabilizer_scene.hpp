@@ -58,6 +58,11 @@ struct PowerStabilizerScene {
   // The loop linearised at the inner gimbal's initial angle β0 (= controller.loops when β0 = 0): A → I(β0),
   // H → H cos β0. The `_predicted` nutation figures use it.
   firmware::PowerStabilizerConfig op_loops;
+  // The loop linearised where the nutation is measured (nutation_window): at β0, or at the platform load's
+  // steady deflection (14.21) when that load acts from before the window. The nutation `_predicted` figures
+  // use it.
+  firmware::PowerStabilizerConfig measure_loops;
+  double measure_beta_rad{0.0};
   // fidelity = precession: the full model's loop for the comparison (its integrator and the sub-steps its
   // own step validation needs) and the expected error.
   LoopConfig full_loop;

@@ -207,8 +207,8 @@ constexpr schema::Field<S> kFields[] = {
               GS_NUMBER(torque_limit_Nm))
         .when(torque_law, "torque"),
     F::number("report", "nutation_window_s", "s", Range::positive(),
-              "window after the first disturbance step for the nutation measurement (a step at t = 0 is a "
-              "load, not a step)",
+              "window for the nutation measurement, from the inner-axis step (else the first disturbance step; "
+              "a step at t = 0 is a load, not a step) to the next step at most",
               GS_NUMBER(measure_window_s)),
     F::number("report", "drift_period_s", "s", Range::non_negative(),
               "periodic-drift monitor: the period of the forcing (a whole number of ticks and of base roll "
