@@ -11,6 +11,7 @@
 // the half-step error estimate; the CSV columns, the figures, and the scene's plant and controller.
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -19,8 +20,11 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/extrema_meter.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/linear_prediction_fit.hpp"
+#include "sim/analysis/sampled_loop_roots.hpp"
 #include "sim/analysis/manoeuvre_segment_log.hpp"
 #include "tools/devices/device_scene_of.hpp"
+#include "tools/devices/gyrocompass/gyrocompass_sampled.hpp"
 #include "tools/devices/gyrocompass/gyrocompass_scene.hpp"
 #include "tools/devices/vehicle_instruments/segments_json.hpp"
 #include "tools/run/error_estimate_report.hpp"
@@ -56,7 +60,9 @@ class GyrocompassRun {
         window_(s.loop.ticks() / 2, 1000),
         alpha_extrema_(s.extrema_hysteresis),
         beta_extrema_(s.extrema_hysteresis),
-        segments_(s.plant.vehicle) {}
+        segments_(s.plant.vehicle),
+        // α every extrema_sample_s from 600 s (the nutation, at 0.1 /s, has decayed by e^-60) to the end.
+        fit_(600.0, s.loop.duration_s, static_cast<double>(s.extrema_every_ticks) * s.loop.tick_s(), 4) {}
 
   void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
   void actuate(const msg::ActuatorFrame& cmd) {
@@ -73,6 +79,7 @@ class GyrocompassRun {
     const double t1 = static_cast<double>(ticks_) * s_.loop.tick_s();
     if (ticks_ % s_.extrema_every_ticks == 0) {
       alpha_extrema_.add(t1, plant_.alpha_rad());
+      fit_.add(t1, plant_.alpha_rad());
       beta_extrema_.add(t1, plant_.beta_rad());
     }
     const double a_eq = book_alpha_eq(plant_.frame());
@@ -104,6 +111,16 @@ class GyrocompassRun {
     row[9] = static_cast<double>(last_.status);
   }
 
+  bool at_rest() const {
+    const motion::VehicleMotionParams& v = s_.plant.vehicle;
+    if (v.start.speed != 0.0) return false;
+    for (int k = 0; k < v.count; ++k) {
+      const motion::ManoeuvreSegment& m = v.segments[static_cast<std::size_t>(k)];
+      if (m.acceleration != 0.0 || m.turn_rate != 0.0) return false;
+    }
+    return true;
+  }
+
   nlohmann::json figures() const {
     const models::GyrocompassParams& gyro = s_.plant.gyro;
     const motion::EarthParams& earth = s_.plant.vehicle.earth;
@@ -127,6 +144,33 @@ class GyrocompassRun {
     const bool periodic = th.omega_K_squared() > 0.0;
     f["period_book_13_12_s"] = periodic ? nlohmann::json(th.period()) : nlohmann::json(nullptr);
     f["decay_rate_book_13_12_s"] = th.decay_rate();
+    // The compass mode of the model itself, linearised at its equilibrium (the inertia, d1, d2 kept), and of
+    // the loop as it runs (hold, period, latency): gyrocompass_sampled.hpp, docs/sampled-data.md.
+    // Only on a base at rest: a moving vehicle changes the loop as it goes.
+    if (at_rest()) {
+      const GyrocompassSampled lin = gyrocompass_sampled(s_);
+      const auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+      f["decay_rate_per_s_predicted"] = finite_or_null(-lin.continuous.real());
+      f["period_s_predicted"] = finite_or_null(2.0 * kPi / lin.continuous.imag());
+      f["decay_rate_per_s_predicted_sampled"] = finite_or_null(-lin.sampled.real());
+      f["period_s_predicted_sampled"] = finite_or_null(2.0 * kPi / lin.sampled.imag());
+      f["sampled_loop_max_abs_z"] = lin.roots.max_abs_z;
+      // The compass mode measured: the root of a recurrence fitted to α sampled every extrema_sample_s
+      // (linear_prediction_fit.hpp), nearest the prediction.
+      if (fit_.valid() && std::isfinite(lin.continuous.real())) {
+        const std::complex<double> m = analysis::nearest_root(fit_.roots(), lin.continuous);
+        f["decay_rate_per_s"] = -m.real();
+        f["period_s"] = 2.0 * kPi / m.imag();
+      } else {
+        f["decay_rate_per_s"] = nullptr;
+        f["period_s"] = nullptr;
+      }
+    } else {
+      for (const char* k : {"decay_rate_per_s_predicted", "period_s_predicted", "decay_rate_per_s_predicted_sampled",
+                            "period_s_predicted_sampled", "sampled_loop_max_abs_z"})
+        f[k] = nullptr;
+      f["linear_prediction"] = "not computed: the vehicle moves (the loop changes with latitude, speed and heading)";
+    }
     if (gyro.fidelity == models::InstrumentFidelity::kFull && c_total > 0.0) {
       f["period_book_13_16_s"] =
           2.0 * kPi * std::sqrt((gyro.gyro.A + H * H / c_total) / (H * we * std::cos(lat)));
@@ -215,6 +259,7 @@ class GyrocompassRun {
   msg::ActuatorFrame last_{};
   analysis::ExtremaMeter<64> alpha_extrema_, beta_extrema_;
   analysis::ManoeuvreSegmentLog<CompassSegment> segments_;
+  analysis::LinearPredictionMeter fit_;
   std::int64_t ticks_{0};
 };
 
