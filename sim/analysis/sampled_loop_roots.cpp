@@ -115,6 +115,24 @@ std::complex<double> nearest_root(const std::vector<std::complex<double>>& s, st
   return best;
 }
 
+StateFeedbackLoop restrict_state_feedback(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& K,
+                                          const std::vector<int>& keep) {
+  const auto n = static_cast<Eigen::Index>(keep.size());
+  StateFeedbackLoop out;
+  out.plant.A = Eigen::MatrixXd::Zero(n, n);
+  out.plant.B = Eigen::MatrixXd::Zero(n, B.cols());
+  out.plant.C = Eigen::MatrixXd::Identity(n, n);
+  Eigen::MatrixXd Kr = Eigen::MatrixXd::Zero(K.rows(), n);
+  for (Eigen::Index r = 0; r < n; ++r) {
+    const int i = keep[static_cast<std::size_t>(r)];
+    for (Eigen::Index q = 0; q < n; ++q) out.plant.A(r, q) = A(i, keep[static_cast<std::size_t>(q)]);
+    out.plant.B.row(r) = B.row(i);
+    Kr.col(r) = K.col(i);
+  }
+  out.law = DiscreteLaw::gain(Kr);
+  return out;
+}
+
 std::string sampled_instability(const SampledLoopRoots& r, const SampledTiming& t, bool continuous_stable) {
   if (r.stable()) return "";
   char buf[200];

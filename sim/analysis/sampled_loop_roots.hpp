@@ -59,6 +59,16 @@ ZohStep zoh_step(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double t);
 Eigen::MatrixXd sampled_closed_loop(const LinearPlant& p, const DiscreteLaw& law, const SampledTiming& t);
 SampledLoopRoots sampled_loop_roots(const LinearPlant& p, const DiscreteLaw& law, const SampledTiming& t);
 
+// A plant ẋ = A x + B u under a state feedback u = K x, restricted to the states `keep` (those that act: a
+// coordinate nothing reads and nothing feeds is a neutral root, z = 1 sampled, that says nothing about the
+// loop): the plant with y = x on those states and the law u = K x as a memoryless DiscreteLaw.
+struct StateFeedbackLoop {
+  LinearPlant plant;
+  DiscreteLaw law;
+};
+StateFeedbackLoop restrict_state_feedback(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& K,
+                                          const std::vector<int>& keep);
+
 // The sampled loop's fixed point under a constant plant input v (ẋ = A x + B u + E v): the plant state x*
 // (with a memoryless law the continuous loop's equilibrium: ZOH keeps equilibria). NaN when I − M is singular
 // (a neutral mode, e.g. the back-EMF stabilizer's α).

@@ -66,19 +66,9 @@ GyrocompassSampled gyrocompass_sampled(const GyrocompassScene& s) {
         A.row(i).cwiseAbs().maxCoeff() > 0.0)
       keep.push_back(i);
   }
-  const auto n = static_cast<Eigen::Index>(keep.size());
-  analysis::LinearPlant p;
-  p.A = Eigen::MatrixXd::Zero(n, n);
-  p.B = Eigen::MatrixXd::Zero(n, 2);
-  p.C = Eigen::MatrixXd::Identity(n, n);
-  Eigen::MatrixXd Kr = Eigen::MatrixXd::Zero(2, n);
-  for (Eigen::Index r = 0; r < n; ++r) {
-    const int i = keep[static_cast<std::size_t>(r)];
-    for (Eigen::Index q = 0; q < n; ++q) p.A(r, q) = A(i, keep[static_cast<std::size_t>(q)]);
-    p.B.row(r) = B.row(i);
-    Kr.col(r) = K.col(i);
-  }
-  const analysis::DiscreteLaw d = analysis::DiscreteLaw::gain(Kr);
+  const analysis::StateFeedbackLoop loop = analysis::restrict_state_feedback(A, B, K, keep);
+  const analysis::LinearPlant& p = loop.plant;
+  const analysis::DiscreteLaw& d = loop.law;
   GyrocompassSampled out;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   out.continuous = {nan, nan};

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "sim/dynamics/eigenvalues.hpp"
 
@@ -52,18 +53,9 @@ TwoRotorLinearLoop two_rotor_linear_loop(const TwoRotorStabilizerScene& s) {
   TwoRotorLinearLoop loop;
   for (int i = 0; i < kN; ++i)
     if (A.col(i).cwiseAbs().maxCoeff() > 0.0 || K.col(i).cwiseAbs().maxCoeff() > 0.0) loop.states.push_back(i);
-  const auto n = static_cast<Eigen::Index>(loop.states.size());
-  loop.plant.A = Eigen::MatrixXd::Zero(n, n);
-  loop.plant.B = Eigen::MatrixXd::Zero(n, 2);
-  loop.plant.C = Eigen::MatrixXd::Identity(n, n);
-  Eigen::MatrixXd Kr = Eigen::MatrixXd::Zero(2, n);
-  for (Eigen::Index r = 0; r < n; ++r) {
-    const int i = loop.states[static_cast<std::size_t>(r)];
-    for (Eigen::Index q = 0; q < n; ++q) loop.plant.A(r, q) = A(i, loop.states[static_cast<std::size_t>(q)]);
-    loop.plant.B.row(r) = B.row(i);
-    Kr.col(r) = K.col(i);
-  }
-  loop.law = analysis::DiscreteLaw::gain(Kr);
+  analysis::StateFeedbackLoop r = analysis::restrict_state_feedback(A, B, K, loop.states);
+  loop.plant = std::move(r.plant);
+  loop.law = std::move(r.law);
   return loop;
 }
 
