@@ -66,9 +66,10 @@ std::vector<std::complex<double>> linear_prediction_roots(const double* y, const
 
 LinearPredictionMeter::LinearPredictionMeter(double t_start, double t_end, double dt, int order, int channels)
     : t0_(t_start), t1_(t_end), dt_(dt), order_(order), channels_(channels < 0 ? 0 : channels) {
+  // At most 1e7 samples (80 MB): a window longer than that keeps its first 1e7 samples.
   const double span = t_end - t_start;
-  if (dt > 0.0 && span > 0.0 && span / dt < 1e7) {
-    const std::size_t n = static_cast<std::size_t>(span / dt) + 2;
+  if (dt > 0.0 && span > 0.0) {
+    const std::size_t n = static_cast<std::size_t>(std::fmin(span / dt, 1e7)) + 2;
     y_.reserve(n);
     v_.reserve(n * static_cast<std::size_t>(channels_));
   }

@@ -26,7 +26,8 @@ namespace gyrostab::analysis {
 std::vector<std::complex<double>> linear_prediction_roots(const double* y, const double* v, int channels,
                                                           std::size_t count, int order, double dt);
 
-// Collects y(t) and the inputs v(t) in [t_start, t_end] every dt, for linear_prediction_roots at the end.
+// Collects y(t) and the inputs v(t) in [t_start, t_end] every dt (the first 1e7 samples at most), for
+// linear_prediction_roots at the end. The caller bounds t_end by the run's end: the buffer is sized from it.
 class LinearPredictionMeter {
  public:
   LinearPredictionMeter(double t_start, double t_end, double dt, int order, int channels = 0);

@@ -68,7 +68,7 @@ class PositionGyroPlatformRun {
         // law read as the input (when the law runs every tick: a slower law reads only some of the draws).
         divisor_(std::max<std::int64_t>(1, static_cast<std::int64_t>(s.controller.runtime.control_divisor))),
         lp_(static_cast<double>(s.plant.disturbance_tick) * s.loop.tick_s() + 0.02,
-            static_cast<double>(s.controller.law.slew_start_tick) * s.loop.tick_s(),
+            std::min(static_cast<double>(s.controller.law.slew_start_tick) * s.loop.tick_s(), s.loop.duration_s),
             s.controller.runtime.control_period_s(), sampled_order(s), divisor_ == 1 ? 1 : 0) {
     const std::int64_t w = ticks_of(s.lag_window_s);
     const auto start = static_cast<std::int64_t>(s.controller.law.slew_start_tick);

@@ -58,7 +58,7 @@ class PowerStabilizerRun {
                                                                 std::llround(s.drift_from_s / s.loop.tick_s()))
                                       : analysis::PeriodicDrift()),
         meter_every_(meter_interval(s)),
-        fit_(nutation_window_.step_s + 0.02, nutation_window_.end_s,
+        fit_(nutation_window_.step_s + 0.02, std::min(nutation_window_.end_s, s.loop.duration_s),
              static_cast<double>(meter_every_) * s.loop.tick_s(), fit_order(s), fit_channels(s, meter_every_)),
         window_(static_cast<std::int64_t>(std::min(s.plant.disturbance.t1, s.plant.disturbance.t2) / s.loop.tick_s()),
                 static_cast<std::int64_t>(1.0 / s.loop.tick_s())) {}

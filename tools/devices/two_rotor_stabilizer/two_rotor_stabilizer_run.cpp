@@ -71,7 +71,8 @@ class TwoRotorRun {
         gain_margin_(firmware::two_rotor_gain_scale_max(s.controller.law)),
         sampled_(two_rotor_sampled(s)),
         law_every_(std::max<std::int64_t>(1, static_cast<std::int64_t>(s.controller.runtime.control_divisor))),
-        fit_(first_step_s(s) + 0.02, std::min(first_step_s(s) + 0.02 + s.nutation_window_s, next_step_s(s)),
+        fit_(first_step_s(s) + 0.02,
+             std::min({first_step_s(s) + 0.02 + s.nutation_window_s, next_step_s(s), s.loop.duration_s}),
              sampled_.timing.period_s,
              static_cast<int>(sampled_.roots.s.size()) + 2),
         window_(s.loop.ticks() / 2, std::max<std::int64_t>(1, static_cast<std::int64_t>(1.0 / s.loop.tick_s()))) {}
