@@ -71,6 +71,31 @@ inline std::complex<double> coning_loop_sensitivity(const sensors::ConingGyroPar
   return 1.0 / (1.0 + L);
 }
 
+// The same sensitivity for the loop as the firmware runs it (docs/sampled-data.md), at the vibration's own
+// frequency (the aliases at ν ± 2πk/T are left out: the loop's gain there is below k_p T/(2π) ≈ 1e-4): the
+// gyro's reading sampled every T; the indicated angle θ_k = θ_{k−1} + scale β_k T (P-gyro: T z/(z − 1)) or
+// θ = scale β (I-gyro); the PI of drive_loops.hpp, u_k = k_p e_k + I_k, I_{k+1} = I_k + k_i T e_k:
+// k_p + k_i T/(z − 1); the command held over a period (its fundamental (1 − e^{−iνT})/(iνT)) and applied
+// `latency` periods later (the law's period T); z = e^{iνT}. For the P-gyro the sum's T z/(z − 1) and the hold combine to 1/(iν)
+// exactly: the half-period lag that the delay (L + ½) T of coning_loop_sensitivity gives the whole loop acts on
+// the integral term only.
+inline std::complex<double> coning_loop_sensitivity_sampled(const sensors::ConingGyroParams& p, double kp, double ki,
+                                                            double tau_drive, double T, double latency, double nu) {
+  const std::complex<double> s{0.0, nu};
+  const std::complex<double> z = std::exp(s * T);
+  const sensors::SingleAxisGyroParams& g = p.gyro;
+  const bool p_gyro = g.c2 > 0.0;
+  const std::complex<double> Ghat = p_gyro ? g.c2 / (g.B * s * s + g.d2 * s + g.c2) : g.d2 / (g.B * s + g.d2);
+  const std::complex<double> hold = (1.0 - 1.0 / z) / (s * T);
+  // From the platform's rate to the indicated angle: the P-gyro's sum of its rate reading, or the I-gyro's
+  // own integration (continuous, ahead of the sampler).
+  const std::complex<double> to_angle = p_gyro ? T * z / (z - 1.0) : 1.0 / s;
+  const std::complex<double> C = kp + ki * T / (z - 1.0);
+  const std::complex<double> L =
+      Ghat * to_angle * C * std::exp(-s * (latency * T)) * hold / (1.0 + tau_drive * s);
+  return 1.0 / (1.0 + L);
+}
+
 // Goodman–Robinson: Δφ = A − 2π n for a frame slaved to ω3' ≡ 0 [rad].
 inline double goodman_robinson_turn(double area, int n) { return area - 2.0 * std::numbers::pi * n; }
 // Spherical area of the cap of half-angle ϑ0 [sr].

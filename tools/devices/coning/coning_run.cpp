@@ -116,7 +116,9 @@ class ConingRun {
                      {"periods", blocks_},
                      {"statistics_from_s", s_.settle_s},
                      {"ticks", ticks_}};
-    const char* measured[] = {"drift_rate_rad_s",      "drift_predicted_rad_s", "drift_rel_error_vs_book",
+    const char* measured[] = {"drift_rate_rad_s",      "drift_predicted_rad_s", "drift_predicted_sampled_rad_s",
+                              "drift_rel_error_vs_prediction_sampled", "loop_sensitivity_sampled_abs",
+                              "drift_rel_error_vs_book",
                               "drift_rel_error_vs_prediction", "platform_mean_rate_rad_s",
                               "gyro_mean_reading_rad_s", "mean_cos_phi",        "max_abs_beta_rad"};
     if (blocks_ < 2) {  // fewer than two whole periods after settling (a short run)
@@ -125,12 +127,19 @@ class ConingRun {
     }
     const double n = static_cast<double>(blocks_ * per_), span = static_cast<double>((blocks_ - 1) * per_) * T;
     const double drift = (last_block_.phi - first_.phi) / static_cast<double>(per_) / span;
+    const std::complex<double> S_sampled = oracles::coning_loop_sensitivity_sampled(
+        m.gyro, law.kp, law.ki, m.drive_time_constant, s_.controller.runtime.control_period_s(),
+        static_cast<double>(s_.loop.latency_ticks) * T / s_.controller.runtime.control_period_s(), nu);
     const double mean_cos = done_cos_ / n;
     const double predicted = -oracles::coning_rate_first_order(m.gyro, O1, O3 * mean_cos, nu, eps, S);
     f["drift_rate_rad_s"] = drift;
     f["drift_predicted_rad_s"] = predicted;
     f["drift_rel_error_vs_book"] = book != 0.0 ? drift / -book - 1.0 : 0.0;
     f["drift_rel_error_vs_prediction"] = predicted != 0.0 ? drift / predicted - 1.0 : 0.0;
+    const double predicted_sampled = -oracles::coning_rate_first_order(m.gyro, O1, O3 * mean_cos, nu, eps, S_sampled);
+    f["drift_predicted_sampled_rad_s"] = predicted_sampled;
+    f["drift_rel_error_vs_prediction_sampled"] = predicted_sampled != 0.0 ? drift / predicted_sampled - 1.0 : 0.0;
+    f["loop_sensitivity_sampled_abs"] = std::abs(S_sampled);
     f["platform_mean_rate_rad_s"] = done_rate_ / n;
     f["gyro_mean_reading_rad_s"] =
         p_gyro ? done_reading_ / n : (last_block_.theta - first_.theta) / static_cast<double>(per_) / span;
