@@ -27,6 +27,7 @@
 #include "firmware/control/cmg_steering.hpp"
 #include "sim/models/cmg_geometry.hpp"
 #include "tools/commands.hpp"
+#include "tools/devices/cmg_cluster/cmg_cluster_scene.hpp"
 
 namespace gyrostab {
 namespace cmg_cluster_generalized_test {
@@ -34,19 +35,7 @@ namespace cmg_cluster_generalized_test {
 using firmware::SteeringLaw;
 constexpr double kPi = std::numbers::pi;
 
-firmware::CmgArray pyramid_array(double h) {
-  const models::CmgGeometry g = models::pyramid_geometry();
-  firmware::CmgArray a;
-  a.count = g.count;
-  a.h = h;
-  for (int i = 0; i < g.count; ++i) {
-    for (int k = 0; k < 3; ++k) {
-      a.gimbal_axis[i][k] = g.gimbal_axis[i][k];
-      a.spin_axis0[i][k] = g.spin_axis0[i][k];
-    }
-  }
-  return a;
-}
+firmware::CmgArray pyramid_array(double h) { return tools::cmg_array_of(models::pyramid_geometry(), h); }
 
 Eigen::Matrix3d t_t_transpose(const firmware::CmgArray& a, const double* d) {
   const firmware::CmgAxes ax = firmware::cmg_axes(a, d);

@@ -25,6 +25,7 @@
 #include "firmware/control/cmg_steering.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/plants/cmg_cluster_plant.hpp"
+#include "tools/devices/cmg_cluster/cmg_cluster_scene.hpp"
 
 namespace gyrostab {
 namespace cmg_cluster_test {
@@ -35,18 +36,7 @@ using models::GimbalDriveMode;
 using Vec3 = dynamics::Vec3;
 constexpr double kPi = std::numbers::pi;
 
-firmware::CmgArray array_of(const models::CmgGeometry& g, double h) {
-  firmware::CmgArray a;
-  a.count = g.count;
-  a.h = h;
-  for (int i = 0; i < g.count; ++i) {
-    for (int k = 0; k < 3; ++k) {
-      a.gimbal_axis[i][k] = g.gimbal_axis[i][k];
-      a.spin_axis0[i][k] = g.spin_axis0[i][k];
-    }
-  }
-  return a;
-}
+firmware::CmgArray array_of(const models::CmgGeometry& g, double h) { return tools::cmg_array_of(g, h); }
 
 // A tumbling spacecraft with turning gimbals: motor torques that vary, no external torque.
 struct Tumble {

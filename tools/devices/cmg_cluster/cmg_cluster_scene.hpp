@@ -37,6 +37,20 @@ struct CmgClusterScene {
 };
 
 // Reads and checks the scene (the problems in the reader; nullptr when refused).
+// The firmware's view of the cluster (steering's gimbal and spin axes, h) from the plant's geometry.
+inline firmware::CmgArray cmg_array_of(const models::CmgGeometry& g, double h) {
+  firmware::CmgArray a;
+  a.count = g.count;
+  a.h = h;
+  for (int i = 0; i < g.count; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      a.gimbal_axis[i][k] = g.gimbal_axis[i][k];
+      a.spin_axis0[i][k] = g.spin_axis0[i][k];
+    }
+  }
+  return a;
+}
+
 std::unique_ptr<DeviceScene> read_cmg_cluster(SceneReader& r);
 SceneDoc cmg_cluster_doc();
 

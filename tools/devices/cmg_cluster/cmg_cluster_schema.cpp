@@ -220,14 +220,7 @@ void derive(S& s) {
   derive_geometry(s);
   auto& c = s.controller;
   c.runtime.tick_period_ns = s.loop.tick_ns;
-  c.array.count = m.geometry.count;
-  c.array.h = m.h;
-  for (int i = 0; i < models::kMaxCmgs; ++i) {
-    for (int k = 0; k < 3; ++k) {
-      c.array.gimbal_axis[i][k] = m.geometry.gimbal_axis[i][k];
-      c.array.spin_axis0[i][k] = m.geometry.spin_axis0[i][k];
-    }
-  }
+  c.array = cmg_array_of(m.geometry, m.h);
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) c.attitude.J[r][k] = m.J(r, k);
     c.attitude.kp[r] = 2.0 * s.attitude_bandwidth * s.attitude_bandwidth * m.J(r, r);
