@@ -8,6 +8,7 @@
 #include "sim/dynamics/step_validation.hpp"
 #include "tools/devices/cmg_cluster/cmg_cluster_scene.hpp"
 #include "tools/run/controller_report.hpp"
+#include "tools/scene/read_rk4_scene.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {
@@ -237,14 +238,8 @@ void derive(S& s) {
 }  // namespace
 
 std::unique_ptr<DeviceScene> read_cmg_cluster(SceneReader& r) {
-  auto s = std::make_unique<CmgClusterScene>();
-  s->loop = read_loop_config(r, "rk4", {"rk4"});
-  schema::read(r, kFields, *s);
-  derive(*s);
-  schema::check(r, kRules, *s);
-  r.finish();
-  if (!r.ok()) return nullptr;
-  return make_cmg_cluster_scene(std::move(s));
+  auto s = schema::read_rk4_scene(r, kFields, derive, kRules);
+  return s ? make_cmg_cluster_scene(std::move(s)) : nullptr;
 }
 
 SceneDoc cmg_cluster_doc() { return {{schema::document(kFields)}, schema::document(kRules)}; }

@@ -9,6 +9,7 @@
 #include "sim/dynamics/step_validation.hpp"
 #include "tools/devices/foucault_gyro/foucault_gyro_scene.hpp"
 #include "tools/run/controller_report.hpp"
+#include "tools/scene/read_rk4_scene.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {
@@ -135,14 +136,8 @@ void derive(S& s) { s.controller.runtime.tick_period_ns = s.loop.tick_ns; }
 }  // namespace
 
 std::unique_ptr<DeviceScene> read_foucault_gyro(SceneReader& r) {
-  auto s = std::make_unique<FoucaultGyroScene>();
-  s->loop = read_loop_config(r, "rk4", {"rk4"});
-  schema::read(r, kFields, *s);
-  derive(*s);
-  schema::check(r, kRules, *s);
-  r.finish();
-  if (!r.ok()) return nullptr;
-  return make_foucault_gyro_scene(std::move(s));
+  auto s = schema::read_rk4_scene(r, kFields, derive, kRules);
+  return s ? make_foucault_gyro_scene(std::move(s)) : nullptr;
 }
 
 SceneDoc foucault_gyro_doc() {

@@ -12,6 +12,7 @@
 #include "tools/devices/monorail/monorail_sampled.hpp"
 #include "tools/devices/monorail/monorail_scene.hpp"
 #include "tools/run/controller_report.hpp"
+#include "tools/scene/read_rk4_scene.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {
@@ -261,14 +262,8 @@ void derive(S& s) {
 }  // namespace
 
 std::unique_ptr<DeviceScene> read_monorail(SceneReader& r) {
-  auto s = std::make_unique<MonorailScene>();
-  s->loop = read_loop_config(r, "rk4", {"rk4"});
-  schema::read(r, kFields, *s);
-  derive(*s);
-  schema::check(r, kRules, *s);
-  r.finish();
-  if (!r.ok()) return nullptr;
-  return make_monorail_scene(std::move(s));
+  auto s = schema::read_rk4_scene(r, kFields, derive, kRules);
+  return s ? make_monorail_scene(std::move(s)) : nullptr;
 }
 
 SceneDoc monorail_doc() {

@@ -8,6 +8,7 @@
 #include "sim/dynamics/step_validation.hpp"
 #include "tools/devices/position_gyro_platform/position_gyro_platform_scene.hpp"
 #include "tools/run/controller_report.hpp"
+#include "tools/scene/read_rk4_scene.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {
@@ -119,14 +120,8 @@ void derive(S& s) {
 }  // namespace
 
 std::unique_ptr<DeviceScene> read_position_gyro_platform(SceneReader& r) {
-  auto s = std::make_unique<PositionGyroPlatformScene>();
-  s->loop = read_loop_config(r, "rk4", {"rk4"});
-  schema::read(r, kFields, *s);
-  derive(*s);
-  schema::check(r, kRules, *s);
-  r.finish();
-  if (!r.ok()) return nullptr;
-  return make_position_gyro_platform_scene(std::move(s));
+  auto s = schema::read_rk4_scene(r, kFields, derive, kRules);
+  return s ? make_position_gyro_platform_scene(std::move(s)) : nullptr;
 }
 
 SceneDoc position_gyro_platform_doc() {

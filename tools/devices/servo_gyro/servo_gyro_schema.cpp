@@ -7,6 +7,7 @@
 #include "sim/dynamics/step_validation.hpp"
 #include "tools/devices/servo_gyro/servo_gyro_scene.hpp"
 #include "tools/run/controller_report.hpp"
+#include "tools/scene/read_rk4_scene.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {
@@ -133,14 +134,8 @@ void derive(S& s) {
 }  // namespace
 
 std::unique_ptr<DeviceScene> read_servo_gyro(SceneReader& r) {
-  auto s = std::make_unique<ServoGyroScene>();
-  s->loop = read_loop_config(r, "rk4", {"rk4"});
-  schema::read(r, kFields, *s);
-  derive(*s);
-  schema::check(r, kRules, *s);
-  r.finish();
-  if (!r.ok()) return nullptr;
-  return make_servo_gyro_scene(std::move(s));
+  auto s = schema::read_rk4_scene(r, kFields, derive, kRules);
+  return s ? make_servo_gyro_scene(std::move(s)) : nullptr;
 }
 
 SceneDoc servo_gyro_doc() {

@@ -8,6 +8,7 @@
 #include "tools/devices/two_rotor_stabilizer/two_rotor_stabilizer_scene.hpp"
 #include "tools/devices/two_rotor_stabilizer/two_rotor_sampled.hpp"
 #include "tools/run/controller_report.hpp"
+#include "tools/scene/read_rk4_scene.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {
@@ -184,14 +185,8 @@ void derive(S& s) {
 }  // namespace
 
 std::unique_ptr<DeviceScene> read_two_rotor_stabilizer(SceneReader& r) {
-  auto s = std::make_unique<TwoRotorStabilizerScene>();
-  s->loop = read_loop_config(r, "rk4", {"rk4"});
-  schema::read(r, kFields, *s);
-  derive(*s);
-  schema::check(r, kRules, *s);
-  r.finish();
-  if (!r.ok()) return nullptr;
-  return make_two_rotor_stabilizer_scene(std::move(s));
+  auto s = schema::read_rk4_scene(r, kFields, derive, kRules);
+  return s ? make_two_rotor_stabilizer_scene(std::move(s)) : nullptr;
 }
 
 SceneDoc two_rotor_stabilizer_doc() {
