@@ -24,6 +24,14 @@ namespace gyrostab::hil {
 // Magnitude limits of the commands a plant accepts, per gimbal axis. Default: no magnitude limit (finite
 // only).
 struct ActuatorLimits {
+  // A torque-mode drive with one limit on both axes (the voltages are unused: no limit).
+  static ActuatorLimits torque_limited(double limit_Nm) {
+    ActuatorLimits l;
+    l.torque_Nm[0] = l.torque_Nm[1] = limit_Nm;
+    l.from_scene = true;
+    return l;
+  }
+
   double torque_Nm[msg::kGimbalAxes]{std::numeric_limits<double>::infinity(),
                                      std::numeric_limits<double>::infinity()};  // |torque| ≤ this [N m]
   double voltage_V[msg::kGimbalAxes]{std::numeric_limits<double>::infinity(),

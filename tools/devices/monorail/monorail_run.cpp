@@ -303,10 +303,7 @@ struct MonorailTraits {
   static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   // The law's torque limit on both axes; no voltage limit (a torque-mode drive: the voltages are unused).
   static hil::ActuatorLimits actuator_limits(const Scene& s) {
-    hil::ActuatorLimits l;
-    l.torque_Nm[0] = l.torque_Nm[1] = s.controller.law.torque_limit_Nm;
-    l.from_scene = true;
-    return l;
+    return hil::ActuatorLimits::torque_limited(s.controller.law.torque_limit_Nm);
   }
   // The car lies on the ground at |φ| = π/2 (sim/plants/car_on_track.hpp); the case has no end stops.
   static nlohmann::json limits(const Scene& s) {

@@ -213,10 +213,7 @@ struct TwoRotorTraits {
   using Controller = tools::Controller;
   static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   static hil::ActuatorLimits actuator_limits(const Scene& s) {
-    hil::ActuatorLimits l;
-    l.torque_Nm[0] = l.torque_Nm[1] = s.controller.law.torque_limit_Nm;
-    l.from_scene = true;
-    return l;
+    return hil::ActuatorLimits::torque_limited(s.controller.law.torque_limit_Nm);
   }
   static nlohmann::json limits(const Scene& s) {
     return {{"motor_torque_limit_Nm", s.controller.law.torque_limit_Nm}};
