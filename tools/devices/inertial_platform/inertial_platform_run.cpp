@@ -9,8 +9,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -18,8 +20,10 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/extrema_meter.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/models/inertial_platform_stability.hpp"
 #include "tools/devices/device_scene_of.hpp"
+#include "tools/devices/inertial_platform/inertial_platform_sampled.hpp"
 #include "tools/devices/inertial_platform/inertial_platform_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
 
@@ -37,8 +41,14 @@ const std::vector<std::string>& columns() {
   return c;
 }
 
+// The Schuler mode measured: a recurrence fitted to the tilt sampled every extrema_sample_s over the whole run
+// (both channels' Schuler pairs, which the cross terms couple, and two spare orders; the servo modes are gone at
+// that sampling), its root nearest the prediction (sim/analysis/linear_prediction_fit.hpp).
+constexpr int kSchulerFitOrder = 6;
+
 struct ChannelStats {
   analysis::ExtremaMeter<64> extrema{};
+  analysis::LinearPredictionMeter fit{0.0, 0.0, 1.0, 1};
   double tilt_max{0.0};
   double velocity_error_max{0.0};
   double position_error{0.0}, position_error_max{0.0};
@@ -52,7 +62,12 @@ class InertialPlatformRun {
  public:
   explicit InertialPlatformRun(const InertialPlatformScene& s)
       : s_(s), plant_(s.plant, s.loop.plant_timing()), window_(s.loop.ticks() / 2, 1000) {
-    for (ChannelStats& c : stats_) c.extrema = analysis::ExtremaMeter<64>(s.extrema_hysteresis);
+    const double dt = static_cast<double>(s.extrema_every_ticks) * s.loop.tick_s();
+    for (ChannelStats& c : stats_) {
+      c.extrema = analysis::ExtremaMeter<64>(s.extrema_hysteresis);
+      c.fit = analysis::LinearPredictionMeter(0.0, s.loop.duration_s + 0.5 * dt, dt, kSchulerFitOrder);
+    }
+    for (int i = 0; i < kChannels; ++i) stats_[static_cast<std::size_t>(i)].fit.add(0.0, plant_.tilt_rad(i));
     remember_rates(0);
   }
 
@@ -75,7 +90,10 @@ class InertialPlatformRun {
       ChannelStats& c = stats_[static_cast<std::size_t>(i)];
       const double e = plant_.tilt_rad(i);
       c.tilt_max = std::max(c.tilt_max, std::fabs(e));
-      if (ticks_ % s_.extrema_every_ticks == 0) c.extrema.add(t1, e);
+      if (ticks_ % s_.extrema_every_ticks == 0) {
+        c.extrema.add(t1, e);
+        c.fit.add(t1, e);
+      }
       // The loop's velocity estimate from its torquer command; the channel's true v = ±R Ω at the time
       // the command estimates (the end of the control step it came from, latency_ticks earlier).
       const double w_cmd = -last_.gimbal_torque_Nm[i] / HL;
@@ -129,6 +147,9 @@ class InertialPlatformRun {
       f["servo_root_worst_re_per_s"] = st.worst.real();
       f["servo_root_worst_im_rad_s"] = std::fabs(st.worst.imag());
     }
+    const std::optional<InertialPlatformSampled> sampled = inertial_platform_sampled<Model>(s_);
+    if (sampled) f["sampled_loop_max_abs_z"] = sampled->roots.max_abs_z;
+    else f["sampled_loop"] = "not computed: the law reads the last tick's mean only once per control period";
     nlohmann::json ch = nlohmann::json::array();
     for (int i = 0; i < kChannels; ++i) {
       const ChannelStats& c = stats_[static_cast<std::size_t>(i)];
@@ -154,6 +175,21 @@ class InertialPlatformRun {
                        {"extrema", c.extrema.count()}};
       j["period_measured_s"] =
           c.extrema.count() >= 2 ? nlohmann::json(c.extrema.period()) : nlohmann::json(nullptr);
+      j["period_s_predicted_sampled"] =
+          sampled ? nlohmann::json(2.0 * kPi / sampled->schuler[i].imag()) : nlohmann::json(nullptr);
+      // Negative: the computer's lag makes the Schuler mode grow (schuler_loop.hpp).
+      j["decay_rate_per_s_predicted_sampled"] =
+          sampled ? nlohmann::json(-sampled->schuler[i].real()) : nlohmann::json(nullptr);
+      // The fitted root nearest the loop's; null for a channel that does not swing (fewer than two extrema:
+      // started level, its recurrence fits only the noise and the vehicle's forced response).
+      const std::complex<double> want = sampled ? sampled->schuler[i] : std::complex<double>(0.0, w_loop);
+      std::complex<double> got{0.0, 0.0};
+      if (c.extrema.count() >= 2 && c.fit.valid()) {
+        const std::vector<std::complex<double>> roots = c.fit.roots();
+        if (!roots.empty()) got = analysis::nearest_root(roots, want);
+      }
+      j["period_s"] = got.imag() > 0.0 ? nlohmann::json(2.0 * kPi / got.imag()) : nlohmann::json(nullptr);
+      j["fit_samples"] = c.fit.samples();
       ch.push_back(j);
     }
     f["channels"] = ch;
