@@ -15,6 +15,7 @@
 // — beside the residual tilt e at the end, how far outside the band it lies, whether the gimbals are held,
 // and the largest gimbal rate over the run's last tenth (the creep: 0 when both are held).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <memory>
@@ -23,8 +24,10 @@
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/planar_mode_fit.hpp"
 #include "sim/analysis/manoeuvre_segment_log.hpp"
 #include "tools/devices/device_scene_of.hpp"
+#include "tools/devices/gyro_vertical/gyro_vertical_sampled.hpp"
 #include "tools/devices/gyro_vertical/gyro_vertical_scene.hpp"
 #include "tools/devices/vehicle_instruments/segments_json.hpp"
 #include "tools/run/error_estimate_report.hpp"
@@ -59,11 +62,48 @@ class GyroVerticalRun {
         plant_(s.plant, s.loop.plant_timing()),
         window_(plant_.model().stick_slip() ? 0 : s.loop.ticks() / 2, 1000),
         segments_(s.plant.vehicle),
-        late_from_(s.loop.ticks() - s.loop.ticks() / 10) {
+        late_from_(s.loop.ticks() - s.loop.ticks() / 10),
+        divisor_(std::max<std::int64_t>(1, static_cast<std::int64_t>(s.controller.runtime.control_divisor))),
+        linear_(linear_law(s)),
+        book_(-s.controller.law.f1 / s.plant.gyro.gyro.H, (s.plant.gyro.c + s.controller.law.c1) / s.plant.gyro.gyro.H),
+        erection_(erection_window(s) > 0.0 ? gyro_vertical_sampled(s, book_) : GyroVerticalSampled{}),
+        every_(fit_every(s)),
+        window_end_(erection_window(s)),
+        fit_(erection_window_start(s), erection_window(s),
+             s.loop.tick_s() * static_cast<double>(divisor_ * every_)) {
     begin_segment(segments_.current());
+    noise_u_.fill(Eigen::Vector2d::Zero());
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void sense(std::int64_t tick, msg::SensorFrame& f) {
+    plant_.sense(tick, f);
+    if (!(window_end_ > 0.0) || static_cast<double>(tick) * s_.loop.tick_s() > window_end_) return;
+    const std::int64_t k = tick;
+    // The response to the errors of the signals the law read (sensed − the model's), through the sampled loop,
+    // comes off the tilt before the fit: the erection noise reaches the tilt through the correction as a
+    // random walk of 1e-3 of the late transient, which the fit's few unknowns would otherwise turn into a bias
+    // of a few %; a 2 % error of the loop model in this small part moves the fit by < 1e-5.
+    const double t = static_cast<double>(tick) * s_.loop.tick_s();
+    double e[4];
+    plant_.model().erection_signal(t, plant_.state(), e[0], e[1]);
+    plant_.model().rates(t, plant_.state(), e[2], e[3]);
+    const Eigen::Vector4d v(f.gimbal_angle_rad[msg::kAxis1] - e[0], f.gimbal_angle_rad[msg::kAxis2] - e[1],
+                            f.gimbal_rate_rad_s[msg::kAxis1] - e[2], f.gimbal_rate_rad_s[msg::kAxis2] - e[3]);
+    const std::size_t slots = noise_u_.size(), L = static_cast<std::size_t>(s_.loop.latency_ticks);
+    noise_u_[static_cast<std::size_t>(k) % slots] = erection_.Kx * noise_x_ + erection_.Kv * v;
+    const Eigen::Vector2d applied = static_cast<std::size_t>(k) >= L
+                                        ? noise_u_[(static_cast<std::size_t>(k) - L) % slots]
+                                        : Eigen::Vector2d::Zero();
+    // Block means of the compensated tilt: they average the nutation out and keep the mode's ratio e^{λ dt}.
+    sum_a_ += plant_.alpha_rad() - noise_x_[0];
+    sum_b_ += plant_.beta_rad() - noise_x_[1];
+    noise_max_ = std::max({noise_max_, std::fabs(noise_x_[0]), std::fabs(noise_x_[1])});
+    if ((k + 1) % every_ == 0) {
+      fit_.add(t, sum_a_ / static_cast<double>(every_), sum_b_ / static_cast<double>(every_));
+      sum_a_ = sum_b_ = 0.0;
+    }
+    noise_x_ = erection_.Phi * noise_x_ + erection_.Gamma * applied;
+  }
   void actuate(const msg::ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
@@ -119,13 +159,71 @@ class GyroVerticalRun {
   }
 
   nlohmann::json figures() const {
+    nlohmann::json f = base_figures();
+    // The erection root over the first, straight segment (gyro_vertical_sampled.hpp).
+    if (erection_window(s_) > 0.0) {
+      f["erection_decay_rate_per_s_predicted"] = -erection_.continuous.real();
+      f["erection_frequency_rad_s_predicted"] = erection_.continuous.imag();
+      f["erection_decay_rate_per_s_predicted_sampled"] = -erection_.sampled.real();
+      f["erection_frequency_rad_s_predicted_sampled"] = erection_.sampled.imag();
+      f["sampled_loop_max_abs_z"] = erection_.roots.max_abs_z;
+      f["erection_window_from_s"] = erection_window_start(s_);
+      f["erection_window_to_s"] = erection_window(s_);
+      f["erection_fit_samples"] = fit_.samples();
+      f["erection_noise_response_max_rad"] = noise_max_;
+      if (fit_.valid()) {
+        const std::complex<double> m = fit_.root();
+        f["erection_decay_rate_per_s"] = -m.real();
+        f["erection_frequency_rad_s"] = std::fabs(m.imag());
+      } else {
+        f["erection_decay_rate_per_s"] = nullptr;
+        f["erection_frequency_rad_s"] = nullptr;
+      }
+    } else {
+      f["erection_root"] = "not computed: the first segment turns or accelerates, the law is not the linear one (rows 1, 4), or it runs below the tick rate";
+    }
+    return f;
+  }
+
+ private:
+  static bool linear_law(const GyroVerticalScene& s) {
+    const firmware::GyroVerticalCorrectionParams& law = s.controller.law;
+    const models::GyroVerticalParams& gyro = s.plant.gyro;
+    return law.f1 == law.f2 && law.c1 == law.c2 && law.d1 == 0.0 && law.d2 == 0.0 && law.r1 == 0.0 &&
+           law.r2 == 0.0 && law.g1 == 0.0 && law.g2 == 0.0 && gyro.r1 == 0.0 && gyro.r2 == 0.0;
+  }
+  // The erection fit's window [s]: in the first segment, while it flies straight with the linear law, from when the
+  // nutation the start excited has decayed by e^-5 (its rate d/A − δ, model header) for 3 erection time
+  // constants H/f at most; its end is 0 when there is none.
+  static double erection_window_start(const GyroVerticalScene& s) {
+    const models::GyroVerticalParams& g = s.plant.gyro;
+    if (g.fidelity != models::InstrumentFidelity::kFull) return 0.0;
+    const double nutation_decay = std::min(g.d1, g.d2) / std::max(g.gyro.A, g.gyro.B) - s.controller.law.f1 / g.gyro.H;
+    return nutation_decay > 0.0 ? 5.0 / nutation_decay : 0.0;
+  }
+  // The fit's sampling: 50 samples per erection time constant H/f, in whole law periods.
+  static std::int64_t fit_every(const GyroVerticalScene& s) {
+    const double T = s.loop.tick_s() * static_cast<double>(std::max<std::int64_t>(1, s.controller.runtime.control_divisor));
+    const double want = s.controller.law.f1 > 0.0 ? s.plant.gyro.gyro.H / s.controller.law.f1 / 50.0 : T;
+    return std::max<std::int64_t>(1, static_cast<std::int64_t>(want / T));
+  }
+  static double erection_window(const GyroVerticalScene& s) {
+    const motion::VehicleMotionParams& v = s.plant.vehicle;
+    if (!linear_law(s) || v.count < 1 || v.segments[0].turn_rate != 0.0 || v.segments[0].acceleration != 0.0 ||
+        !(s.controller.law.f1 > 0.0) || s.controller.runtime.control_divisor != 1)
+      return 0.0;
+    const double seg = 1e-9 * static_cast<double>(v.segments[0].duration_ns);
+    const double end = std::min({seg, s.loop.duration_s, erection_window_start(s) + 3.0 * s.plant.gyro.gyro.H / s.controller.law.f1});
+    return end > erection_window_start(s) ? end : 0.0;
+  }
+
+ public:
+  nlohmann::json base_figures() const {
     const firmware::GyroVerticalCorrectionParams& law = s_.controller.law;
     const models::GyroVerticalParams& gyro = s_.plant.gyro;
     const double H = gyro.gyro.H;
     // The plant's bearing damping d shifts δ by d(Hω + c)/(fH) only: it does not void the prediction.
-    const bool linear = law.f1 == law.f2 && law.c1 == law.c2 && law.d1 == 0.0 && law.d2 == 0.0 &&
-                        law.r1 == 0.0 && law.r2 == 0.0 && law.g1 == 0.0 && law.g2 == 0.0 && gyro.r1 == 0.0 &&
-                        gyro.r2 == 0.0;
+    const bool linear = linear_;
     const double delta = law.f1 / H, omega_P = (gyro.c + law.c1) / H, omega_P_plant = gyro.c / H;
     const double alpha = plant_.alpha_rad(), beta = plant_.beta_rad();
     nlohmann::json f{{"ticks", ticks_},
@@ -249,6 +347,17 @@ class GyroVerticalRun {
   std::int64_t late_from_;
   double late_rate_max_{0.0};
   std::int64_t ticks_{0};
+  std::int64_t divisor_;
+  bool linear_;
+  std::complex<double> book_;  // −δ + i ω^P
+  GyroVerticalSampled erection_;
+  std::int64_t every_;
+  double window_end_;
+  analysis::PlanarModeFit fit_;
+  double sum_a_{0.0}, sum_b_{0.0};
+  double noise_max_{0.0};  // largest |α|, |β| of the sensor errors' response [rad]
+  Eigen::Vector4d noise_x_{Eigen::Vector4d::Zero()};
+  std::array<Eigen::Vector2d, kMaxLatencyTicks + 1> noise_u_{};
 };
 
 struct GyroVerticalTraits {
