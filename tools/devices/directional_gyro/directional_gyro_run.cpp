@@ -12,9 +12,11 @@
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/analysis/manoeuvre_segment_log.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/directional_gyro/directional_gyro_scene.hpp"
+#include "tools/devices/directional_gyro/directional_gyro_sampled.hpp"
 #include "tools/devices/vehicle_instruments/segments_json.hpp"
 #include "tools/run/error_estimate_report.hpp"
 
@@ -66,7 +68,10 @@ class DirectionalGyroRun {
         plant_(s.plant, s.loop.plant_timing()),
         window_(s.loop.ticks() / 2, 1000),
         segments_(s.plant.vehicle),
-        indicated0_(plant_.indicated_heading_unwrapped_rad()) {
+        indicated0_(plant_.indicated_heading_unwrapped_rad()),
+        fit_window_(inner_gimbal_window(s)),
+        fit_every_(fit_every(s)),
+        fit_(fit_window_.from, fit_window_.to, s.loop.tick_s() * static_cast<double>(fit_every_), kFitOrder) {
     heading_prev_ = plant_.true_heading_rad();
     azimuth_prev_ = azimuth_of(plant_.rotor_axis_ned());
     begin_segment(segments_.current());
@@ -75,6 +80,7 @@ class DirectionalGyroRun {
   void sense(std::int64_t tick, msg::SensorFrame& f) {
     plant_.sense(tick, f);
     compass_ = f.carrier_angle_rad[msg::kYaw];
+    if (tick % fit_every_ == 0) fit_.add(static_cast<double>(tick) * s_.loop.tick_s(), plant_.beta_rad());
   }
   void actuate(const msg::ActuatorFrame& cmd) {
     last_ = cmd;
@@ -154,6 +160,7 @@ class DirectionalGyroRun {
                   {"compensation_deg_h", compensation_sum_ * per},
                   {"book_residual_deg_h", (earth_sum_ + transport_sum_ + compensation_sum_) * per}};
     const firmware::DirectionalGyroCorrectionParams& law = s_.controller.law;
+    inner_gimbal_figures(f);
     f["segments"] = segments_json(segments_, T, [&](nlohmann::json& j, const SegmentRecord& r) {
       const double bank = r.bank_sum / static_cast<double>(r.samples);
       const bool ended = r.ended;
@@ -192,6 +199,58 @@ class DirectionalGyroRun {
   }
 
  private:
+  // The inter-gimbal correction's root (12.24), predicted and measured in the last segment when it flies
+  // straight and level: a recurrence fitted to β sampled 50 times per time constant H/k, from the segment's
+  // start for 5 time constants (the mode and a slowly moving equilibrium: order 3), its real root nearest
+  // the prediction; the prediction linearised where the run ends (directional_gyro_sampled.hpp).
+  static constexpr int kFitOrder = 3;
+  struct Window {
+    double from{0.0}, to{-1.0};
+  };
+  static Window inner_gimbal_window(const DirectionalGyroScene& s) {
+    const firmware::DirectionalGyroCorrectionParams& law = s.controller.law;
+    const motion::VehicleMotionParams& v = s.plant.vehicle;
+    if (!(law.k > 0.0) || s.controller.runtime.control_divisor != 1) return {};
+    double from = 0.0;
+    if (v.count > 0) {
+      const motion::ManoeuvreSegment& last = v.segments[static_cast<std::size_t>(v.count - 1)];
+      if (last.turn_rate != 0.0 || last.acceleration != 0.0) return {};
+      for (int i = 0; i + 1 < v.count; ++i) from += 1e-9 * static_cast<double>(v.segments[static_cast<std::size_t>(i)].duration_ns);
+    }
+    const double to = std::min(s.loop.duration_s, from + 5.0 * law.H / law.k);
+    return to > from ? Window{from, to} : Window{};
+  }
+  static std::int64_t fit_every(const DirectionalGyroScene& s) {
+    const double T = s.loop.tick_s(), k = s.controller.law.k;
+    return k > 0.0 ? std::max<std::int64_t>(1, static_cast<std::int64_t>(s.controller.law.H / k / 50.0 / T)) : 1;
+  }
+  void inner_gimbal_figures(nlohmann::json& f) const {
+    const firmware::DirectionalGyroCorrectionParams& law = s_.controller.law;
+    if (!(fit_window_.to > fit_window_.from)) {
+      f["inner_gimbal_root"] =
+          "not computed: no inter-gimbal correction, a last segment that turns or accelerates, or a law below "
+          "the tick rate";
+      return;
+    }
+    const DirectionalGyroSampled d = directional_gyro_sampled(s_, plant_);
+    f["inner_gimbal_decay_rate_book_12_24_per_s"] = law.k / law.H;
+    f["inner_gimbal_decay_rate_per_s_predicted"] = -d.continuous;
+    f["inner_gimbal_decay_rate_per_s_predicted_sampled"] = -d.sampled.real();
+    f["sampled_loop_max_abs_z"] = d.roots.max_abs_z;
+    f["inner_gimbal_window_from_s"] = fit_window_.from;
+    f["inner_gimbal_window_to_s"] = fit_window_.to;
+    f["inner_gimbal_fit_samples"] = fit_.samples();
+    double measured = 0.0;
+    if (fit_.valid()) {
+      // The real roots only: the mode is not oscillatory.
+      std::vector<std::complex<double>> real;
+      for (const std::complex<double>& z : fit_.roots())
+        if (z.imag() == 0.0) real.push_back(z);
+      if (!real.empty()) measured = -analysis::nearest_root(real, d.sampled).real();
+    }
+    f["inner_gimbal_decay_rate_per_s"] = measured > 0.0 ? nlohmann::json(measured) : nlohmann::json(nullptr);
+  }
+
   void begin_segment(SegmentRecord& r) const {
     r.beta_start = plant_.beta_rad();
     r.along_track_start = wrap(azimuth_of(plant_.rotor_axis_ned()) - plant_.true_heading_rad());
@@ -208,6 +267,9 @@ class DirectionalGyroRun {
   double earth_sum_{0.0}, transport_sum_{0.0}, compensation_sum_{0.0}, torque_share_{0.0};  // [rad]
   double compass_{0.0};
   std::int64_t ticks_{0};
+  Window fit_window_;
+  std::int64_t fit_every_;
+  analysis::LinearPredictionMeter fit_;
 };
 
 struct DirectionalGyroTraits {
