@@ -14,7 +14,13 @@ extern const DeviceDescriptor kServoGyro{
         "absolute, single turn (β read in [−π, π)). Shipped: `sim/scenes/servo-gyro.toml` (the book's 5.7° "
         "example: gain ×10). Integrator: `rk4` (the only one).",
     .figures =
-        "Figures, over the whole drive revolutions after settle_s (Fourier sums against the drive angle β): "
+        "Figures: the rate loop's pair (docs/sampled-data.md) as natural frequency and damping ratio, "
+        "`rate_loop_natural_frequency_rad_s`, `rate_loop_damping_ratio` (measured: a recurrence fitted to β' from "
+        "settle_s, with the sensor errors and the torque the PI did not command as inputs; "
+        "`rate_loop_fit_samples`) beside `_predicted_sampled` (the axis-2 inertia, the firmware's PI, hold and "
+        "latency; `sampled_loop_max_abs_z`) and `_predicted` (the continuous design, ω_n = sqrt(k_i/B)); with a "
+        "current loop or a law below the tick rate `rate_loop` (why not). "
+        "Over the whole drive revolutions after settle_s (Fourier sums against the drive angle β): "
         "`alpha_A_rad` and `phase_rad` (α = α_A cos(β − φ); −π/2 at resonance), `M1_max_Nm` (peak of the "
         "gyroscopic torque −H cosβ β' on axis 1), `M2_max_Nm` (peak of the applied motor torque, sensor "
         "noise included), `torque_gain` = M1_max/M2_max — the measured torque amplification — beside "

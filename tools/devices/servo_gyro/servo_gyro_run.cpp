@@ -5,7 +5,9 @@
 // the harmonic content (noise-free); the rate loop's tracking; motor power against the dissipation — the CSV
 // columns, the half-step error estimate, and the scene's plant and controller for the run modes.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <complex>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -13,8 +15,10 @@
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/analysis/servo_drive_sums.hpp"
 #include "tools/devices/device_scene_of.hpp"
+#include "tools/devices/servo_gyro/servo_gyro_sampled.hpp"
 #include "tools/devices/servo_gyro/servo_gyro_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
 
@@ -38,9 +42,35 @@ class ServoGyroRun {
         plant_(s.plant, s.loop.plant_timing()),
         settle_tick_(static_cast<std::int64_t>(std::llround(s.settle_s / s.loop.tick_s()))),
         window_(std::min(settle_tick_, s.loop.ticks() / 2),
-                static_cast<std::int64_t>(1.0 / s.loop.tick_s())) {}
+                static_cast<std::int64_t>(1.0 / s.loop.tick_s())),
+        applies_(rate_loop_applies(s)),
+        rate_loop_(applies_ ? servo_gyro_sampled(s) : ServoGyroSampled{}),
+        fit_(s.settle_s, applies_ ? s.loop.duration_s : -1.0, s.loop.tick_s(),
+             static_cast<int>(rate_loop_.roots.s.size()) + 2, 3) {}
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  // The inputs of the fitted recurrence of β' (linear_prediction_fit.hpp): the errors of the signals the rate
+  // loop read (the tachometer's, and the axis-1 rate the feed-forward reads) and the torque it did not command.
+  void sense(std::int64_t tick, msg::SensorFrame& f) {
+    plant_.sense(tick, f);
+    if (!applies_) return;
+    // The feed-forward this frame makes the law add (14.43), applied latency ticks later.
+    const std::size_t slots = ff_.size();
+    ff_[static_cast<std::size_t>(tick) % slots] =
+        s_.controller.law.feedforward
+            ? -s_.controller.law.H * std::cos(f.gimbal_angle_rad[msg::kAxis2]) * f.gimbal_rate_rad_s[msg::kAxis1]
+            : 0.0;
+    const double v[3] = {f.gimbal_rate_rad_s[msg::kAxis2] - plant_.beta_rate_rad_s(),
+                         f.gimbal_rate_rad_s[msg::kAxis1] - plant_.alpha_rate_rad_s(), coupling_};
+    fit_.add(static_cast<double>(tick) * s_.loop.tick_s(), plant_.beta_rate_rad_s(), v);
+  }
+  // The axis-2 torque the PI did not command over the last tick: the gyroscopic terms of (14.41) (trapezoid
+  // over the tick) plus the feed-forward that was applied. With it among the fit's inputs the rate loop's
+  // recurrence is exact although the oscillator turns the coupling with cos β (a time-varying loop).
+  double gyroscopic_Nm() const {
+    const models::ServoGyroParams& g = s_.plant.gyro;
+    const double b = plant_.beta_rad(), a1 = plant_.alpha_rate_rad_s();
+    return g.H * std::cos(b) * a1 - g.Q * std::sin(b) * std::cos(b) * a1 * a1;
+  }
   void actuate(const msg::ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
@@ -48,9 +78,15 @@ class ServoGyroRun {
   void advance(std::int64_t tick) {
     const double M2 = plant_.axis2_torque_Nm();
     const Plant::HeldInputs in = plant_.held_inputs();
+    const double g0 = applies_ ? gyroscopic_Nm() : 0.0;
     window_.before_tick(tick, plant_.state(), in);
     plant_.advance(tick);
     window_.after_tick(tick, plant_.state());
+    if (applies_) {
+      const std::int64_t from = tick - s_.loop.latency_ticks;
+      const double ff = from >= 0 ? ff_[static_cast<std::size_t>(from) % ff_.size()] : 0.0;
+      coupling_ = 0.5 * (g0 + gyroscopic_Nm()) + ff;
+    }
     ticks_ = tick + 1;
     if (ticks_ < settle_tick_) return;
     if (!started_) {
@@ -89,6 +125,7 @@ class ServoGyroRun {
                      {"revolutions", revolutions_},
                      {"statistics_from_s", s_.settle_s},
                      {"ticks", ticks_}};
+    rate_loop_figures(f);
     const char* measured[] = {"alpha_A_rad",
                               "phase_rad",
                               "M1_max_Nm",
@@ -129,6 +166,43 @@ class ServoGyroRun {
     return f;
   }
 
+  // The rate loop's pair (servo_gyro_sampled.hpp): measured as the two roots of the fitted recurrence nearest
+  // the sampled pair's centre.
+  void rate_loop_figures(nlohmann::json& f) const {
+    if (!applies_) {
+      f["rate_loop"] = "not computed: the law runs below the tick rate, or a current loop drives the motor";
+      return;
+    }
+    const PairShape c = pair_shape(rate_loop_.continuous[0], rate_loop_.continuous[1]);
+    const PairShape sp = pair_shape(rate_loop_.sampled[0], rate_loop_.sampled[1]);
+    f["rate_loop_natural_frequency_rad_s_predicted"] = c.natural_frequency;
+    f["rate_loop_damping_ratio_predicted"] = c.damping_ratio;
+    f["rate_loop_natural_frequency_rad_s_predicted_sampled"] = sp.natural_frequency;
+    f["rate_loop_damping_ratio_predicted_sampled"] = sp.damping_ratio;
+    f["sampled_loop_max_abs_z"] = rate_loop_.roots.max_abs_z;
+    f["rate_loop_fit_samples"] = fit_.samples();
+    f["rate_loop_natural_frequency_rad_s"] = nullptr;
+    f["rate_loop_damping_ratio"] = nullptr;
+    if (!fit_.valid()) return;
+    std::vector<std::complex<double>> pool = fit_.roots();
+    const std::complex<double> centre = 0.5 * (rate_loop_.sampled[0] + rate_loop_.sampled[1]);
+    std::complex<double> m[2];
+    for (int i = 0; i < 2; ++i) {
+      if (pool.empty()) return;
+      std::size_t best = 0;
+      for (std::size_t j = 1; j < pool.size(); ++j)
+        if (std::abs(pool[j] - centre) < std::abs(pool[best] - centre)) best = j;
+      m[i] = pool[best];
+      pool.erase(pool.begin() + static_cast<std::ptrdiff_t>(best));
+    }
+    const PairShape got = pair_shape(m[0], m[1]);
+    f["rate_loop_natural_frequency_rad_s"] = got.natural_frequency;
+    f["rate_loop_damping_ratio"] = got.damping_ratio;
+  }
+  static bool rate_loop_applies(const ServoGyroScene& s) {
+    return s.controller.runtime.control_divisor == 1 && !s.controller.drive.enabled;
+  }
+
   // report.json "error_estimate": 1 s of the steady drive from the end of the settling time (the run's middle
   // if that is earlier).
   nlohmann::json error_estimate() const {
@@ -153,6 +227,11 @@ class ServoGyroRun {
   analysis::DriveSums run_{}, done_{};  // the sums so far, and at the last completed revolution
   std::int64_t ticks_{0};
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
+  bool applies_;
+  ServoGyroSampled rate_loop_;
+  analysis::LinearPredictionMeter fit_;
+  std::array<double, kMaxLatencyTicks + 1> ff_{};  // the feed-forward of the last frames, by tick [N m]
+  double coupling_{0.0};  // the torque the PI did not command over the last tick [N m]
 };
 
 struct ServoGyroTraits {
