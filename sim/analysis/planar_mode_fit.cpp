@@ -16,8 +16,15 @@ PlanarModeFit::PlanarModeFit(double t_start, double t_end, double dt) : t0_(t_st
 }
 
 std::complex<double> PlanarModeFit::root() const {
+  const Pair p = pair();
+  const std::complex<double> l0 = p.first, l1 = p.second;
+  if (l0.imag() == 0.0 && l1.imag() == 0.0) return l0.real() > l1.real() ? l0 : l1;
+  return l0.imag() >= 0.0 ? l0 : l1;
+}
+
+PlanarModeFit::Pair PlanarModeFit::pair() const {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (!valid()) return {nan, nan};
+  if (!valid()) return {{nan, nan}, {nan, nan}};
   // Centred and scaled: the equilibrium can be far from zero against the transient; Φ does not change.
   double ma = 0.0, mb = 0.0;
   for (const Sample& s : x_) ma += s.a, mb += s.b;
@@ -25,7 +32,7 @@ std::complex<double> PlanarModeFit::root() const {
   mb /= static_cast<double>(x_.size());
   double scale = 0.0;
   for (const Sample& s : x_) scale = std::fmax(scale, std::fmax(std::fabs(s.a - ma), std::fabs(s.b - mb)));
-  if (!(scale > 0.0)) return {nan, nan};
+  if (!(scale > 0.0)) return {{nan, nan}, {nan, nan}};
   const auto rows = static_cast<Eigen::Index>(x_.size() - 1);
   Eigen::MatrixXd X(rows, 4), Y(rows, 2);
   for (Eigen::Index k = 0; k < rows; ++k) {
@@ -41,9 +48,7 @@ std::complex<double> PlanarModeFit::root() const {
   const Eigen::MatrixXd P = X.colPivHouseholderQr().solve(Y);  // rows 0-1: Φᵀ
   const Eigen::Matrix2d Phi = P.topRows(2).transpose();
   const Eigen::Vector2cd mu = Eigen::EigenSolver<Eigen::Matrix2d>(Phi, false).eigenvalues();
-  std::complex<double> l0 = std::log(mu(0)) / dt_, l1 = std::log(mu(1)) / dt_;
-  if (l0.imag() == 0.0 && l1.imag() == 0.0) return l0.real() > l1.real() ? l0 : l1;
-  return l0.imag() >= 0.0 ? l0 : l1;
+  return {std::log(mu(0)) / dt_, std::log(mu(1)) / dt_};
 }
 
 }  // namespace gyrostab::analysis

@@ -26,6 +26,12 @@ class PlanarModeFit {
   bool valid() const { return x_.size() >= 12; }
   // λ with Im λ ≥ 0 [1/s] (NaN when not valid; a real pair gives the slower root).
   std::complex<double> root() const;
+  // Both of Φ's roots ln(μ)/dt [1/s] (a conjugate or a real pair; NaN when not valid): near a double root,
+  // where each alone is ill-conditioned, their sum and product are not.
+  struct Pair {
+    std::complex<double> first, second;
+  };
+  Pair pair() const;
   std::size_t samples() const { return x_.size(); }
 
  private:

@@ -23,7 +23,14 @@ extern const DeviceDescriptor kCmgCluster{
         "generalized inverse passes). "
         "Integrator: `rk4` (the only one).",
     .figures =
-        "Figures: `final_attitude_error_deg`, `settling_time_s` (the last time the error was outside "
+        "Figures: the attitude pair about the slew axis (a principal axis; docs/sampled-data.md) as natural "
+        "frequency and damping ratio, `attitude_natural_frequency_rad_s`, `attitude_damping_ratio` (measured: "
+        "the planar recurrence of (q_k, ω_k) fitted to means over 1/(50 ω_a) from `attitude_window_from_s`, "
+        "when the error falls below 0.5°, the body-rate noise's response `attitude_noise_response_max` taken off; "
+        "`attitude_fit_samples`) beside `_predicted_sampled` (the 19-state model linearised where the run ends, "
+        "the firmware's law probed through the frame, hold and latency; `sampled_loop_max_abs_z`, whose neutral "
+        "null-motion mode sits at 1 ± 1e-8) and `_predicted` (the design J s² + K_d s + K_p/2); else "
+        "`attitude_loop` (why not). `final_attitude_error_deg`, `settling_time_s` (the last time the error was outside "
         "`settle_band_deg`; null if it never settled), `min_singularity_measure` = min det(AAᵀ)/h⁶ along the run "
         "and `min_singularity_measure_at_s`, beside `singularity_measure_at_zero_momentum`; "
         "`near_singular_time_s` (measure below `near_singular_measure`); `rate_limited_ticks` (gimbal rates scaled "

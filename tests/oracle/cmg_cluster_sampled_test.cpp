@@ -1,0 +1,82 @@
+// The CMG cluster's attitude loop about the slew axis, linearised and sampled
+// (tools/devices/cmg_cluster/cmg_cluster_sampled.hpp, docs/sampled-data.md), against the shipped slews. The
+// design J s² + K_d s + K_p/2 is a double root at −0.3 /s (ω_n = 0.3 rad/s, ζ = 1); the 19-state model where the
+// run ends (gimbal servos with the rotors' load on them, the steering's inverse, hold, latency) gives
+// ω_n = 0.29928 rad/s and ζ = 0.99665 (−2.4e-3, −3.4e-3). Measured: the planar recurrence of (q_k, ω_k)
+// (planar_mode_fit.hpp) fitted to 1/(50 ω_a) means from 0.5° of error to the end, after the body-rate noise's
+// response (simulated through the sampled loop from the run's start) is taken off:
+//   (a) `cmg-cluster-slew`: ω_n −3.2e-4, ζ −4.4e-5 from the sampled pair (tolerance 1e-3; what is left is the
+//       approach's non-linearity — from 2° it is −2.1e-3, from 1° −8.4e-4, scaling as θ^1.4), and nearer to it
+//       than to the design (−2.7e-3, −3.4e-3);
+//   (b) the noise's response is the one taken off: without the rate noise the same figures to 1e-5;
+//   (c) `cmg-cluster-singularity-pseudo-inverse` (60° through the singular region, exact inverse): −7.0e-4,
+//       −1.1e-4. The two singularity-robust scenes are not held: their λ = λ0 e^{−μ m} changes with the
+//       configuration over the approach (docs/sampled-data.md).
+#include "tests/support/scene_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace gyrostab::cmg_cluster_sampled_test {
+
+const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
+
+struct Pair {
+  double wn{0}, zeta{0}, wn_s{0}, zeta_s{0}, wn_c{0}, zeta_c{0};
+  static Pair of(const nlohmann::json& f) {
+    EXPECT_TRUE(f["attitude_natural_frequency_rad_s"].is_number()) << f.dump();
+    if (!f["attitude_natural_frequency_rad_s"].is_number()) return {};
+    return {f["attitude_natural_frequency_rad_s"].get<double>(), f["attitude_damping_ratio"].get<double>(),
+            f["attitude_natural_frequency_rad_s_predicted_sampled"].get<double>(),
+            f["attitude_damping_ratio_predicted_sampled"].get<double>(),
+            f["attitude_natural_frequency_rad_s_predicted"].get<double>(),
+            f["attitude_damping_ratio_predicted"].get<double>()};
+  }
+  void print(const char* what) const {
+    std::printf("  %s: w_n %.9g (sampled %+.2e, design %+.2e), zeta %.9g (sampled %+.2e, design %+.2e)\n", what, wn,
+                wn / wn_s - 1.0, wn / wn_c - 1.0, zeta, zeta / zeta_s - 1.0, zeta / zeta_c - 1.0);
+  }
+};
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(CmgClusterSampled, ShippedSlewMeasuresTheSampledAttitudePair) {
+  const std::string path = kScenes + "cmg-cluster-slew.toml";
+  const nlohmann::json f = testing::figures_of(path);
+  const Pair p = Pair::of(f);
+  p.print("cmg-cluster-slew");
+  EXPECT_LT(std::fabs(p.wn / p.wn_s - 1.0), 1e-3);
+  EXPECT_LT(std::fabs(p.zeta / p.zeta_s - 1.0), 1e-3);
+  EXPECT_LT(std::fabs(p.wn / p.wn_s - 1.0), std::fabs(p.wn / p.wn_c - 1.0));
+  EXPECT_LT(std::fabs(p.zeta / p.zeta_s - 1.0), std::fabs(p.zeta / p.zeta_c - 1.0));
+  EXPECT_GT(f["attitude_noise_response_max"].get<double>(), 0.0);
+  // (b) without the rate noise: the same pair.
+  const std::string text = read_text(path);
+  std::string quiet = text;
+  const auto at = quiet.find("[report]");
+  ASSERT_NE(at, std::string::npos);
+  quiet.insert(at, "[sensors]\nrate_noise_density = 0.0\n");
+  const Pair q = Pair::of(testing::figures_of(path, quiet, kScenes));
+  std::printf("  without rate noise: w_n %+.2e, zeta %+.2e from the shipped\n", p.wn / q.wn - 1.0, p.zeta / q.zeta - 1.0);
+  EXPECT_LT(std::fabs(p.wn / q.wn - 1.0), 1e-5);
+  EXPECT_LT(std::fabs(p.zeta / q.zeta - 1.0), 1e-5);
+}
+
+TEST(CmgClusterSampled, PseudoInverseThroughTheSingularRegionToo) {
+  const Pair p = Pair::of(testing::figures_of(kScenes + "cmg-cluster-singularity-pseudo-inverse.toml"));
+  p.print("cmg-cluster-singularity-pseudo-inverse");
+  EXPECT_LT(std::fabs(p.wn / p.wn_s - 1.0), 1e-3);
+  EXPECT_LT(std::fabs(p.zeta / p.zeta_s - 1.0), 1e-3);
+}
+
+}  // namespace gyrostab::cmg_cluster_sampled_test
