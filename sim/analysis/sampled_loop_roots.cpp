@@ -142,4 +142,22 @@ std::string sampled_instability(const SampledLoopRoots& r, const SampledTiming& 
   return buf;
 }
 
+std::array<std::complex<double>, 2> nearest_pair(std::vector<std::complex<double>> s, std::complex<double> centre) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::array<std::complex<double>, 2> out{std::complex<double>(nan, nan), std::complex<double>(nan, nan)};
+  for (std::size_t i = 0; i < 2 && !s.empty(); ++i) {
+    std::size_t best = 0;
+    for (std::size_t j = 1; j < s.size(); ++j)
+      if (std::abs(s[j] - centre) < std::abs(s[best] - centre)) best = j;
+    out[i] = s[best];
+    s.erase(s.begin() + static_cast<std::ptrdiff_t>(best));
+  }
+  return out;
+}
+
+PairShape pair_shape(std::complex<double> s1, std::complex<double> s2) {
+  const double wn = std::sqrt((s1 * s2).real());
+  return {wn, -(s1 + s2).real() / (2.0 * wn)};
+}
+
 }  // namespace gyrostab::analysis

@@ -19,6 +19,7 @@
 // Host only: Eigen's dynamic matrices and eigensolver allocate; for schemas and reports, never the hot loop.
 #pragma once
 
+#include <array>
 #include <complex>
 #include <string>
 #include <vector>
@@ -79,6 +80,17 @@ Eigen::VectorXd sampled_steady_state(const LinearPlant& p, const DiscreteLaw& la
 // half-plane of `continuous` (Im s ≥ 0 when Im continuous ≥ 0). Matching by distance rather than by "largest
 // |Im|" keeps a delay line's fast roots (near z = 0, |Im s| up to π/T) from being taken for the mode.
 std::complex<double> nearest_root(const std::vector<std::complex<double>>& s, std::complex<double> continuous);
+
+// The two roots of s nearest `centre`, each taken once: a pair near a double root (a PI designed to one, an
+// attitude loop at ζ = 1), whose members are ill-conditioned one by one.
+std::array<std::complex<double>, 2> nearest_pair(std::vector<std::complex<double>> s, std::complex<double> centre);
+
+// A real or conjugate pair as natural frequency ω_n = √(s1 s2) [rad/s] and damping ratio
+// ζ = −(s1 + s2)/(2 ω_n): smooth in the loop's coefficients where the roots themselves are not.
+struct PairShape {
+  double natural_frequency{0.0}, damping_ratio{0.0};
+};
+PairShape pair_shape(std::complex<double> s1, std::complex<double> s2);
 
 // The sampled verdict in words for a schema's message: "" when stable; else e.g. "unstable at tick 5 ms
 // with latency 1 tick(s): |z| = 1.03" (prefixed by "stable in continuous time but " when continuous_stable).

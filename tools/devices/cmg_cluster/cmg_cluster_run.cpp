@@ -187,10 +187,6 @@ class CmgClusterRun {
     }
     return k;
   }
-  static void pair_shape(std::complex<double> a, std::complex<double> b, double& wn, double& zeta) {
-    wn = std::sqrt((a * b).real());
-    zeta = -(a + b).real() / (2.0 * wn);
-  }
   // The attitude pair about the slew axis (cmg_cluster_sampled.hpp), predicted where the run ends, and
   // measured: the noise's response through the sampled loop taken off the recorded approach, the planar
   // recurrence of (q_k, ω_k) fitted to means over 1/(50 ω_a) (planar_mode_fit.hpp).
@@ -201,13 +197,12 @@ class CmgClusterRun {
     }
     const double tick = s_.loop.tick_s(), t_end = static_cast<double>(ticks_) * tick;
     const CmgClusterSampled p = cmg_cluster_sampled(s_, plant_.state(), t_end, axis_);
-    double wn = 0.0, z = 0.0;
-    pair_shape(p.design[0], p.design[1], wn, z);
-    f["attitude_natural_frequency_rad_s_predicted"] = wn;
-    f["attitude_damping_ratio_predicted"] = z;
-    pair_shape(p.sampled[0], p.sampled[1], wn, z);
-    f["attitude_natural_frequency_rad_s_predicted_sampled"] = wn;
-    f["attitude_damping_ratio_predicted_sampled"] = z;
+    const analysis::PairShape design = analysis::pair_shape(p.design[0], p.design[1]);
+    const analysis::PairShape sampled = analysis::pair_shape(p.sampled[0], p.sampled[1]);
+    f["attitude_natural_frequency_rad_s_predicted"] = design.natural_frequency;
+    f["attitude_damping_ratio_predicted"] = design.damping_ratio;
+    f["attitude_natural_frequency_rad_s_predicted_sampled"] = sampled.natural_frequency;
+    f["attitude_damping_ratio_predicted_sampled"] = sampled.damping_ratio;
     f["sampled_loop_max_abs_z"] = p.roots.max_abs_z;
     f["attitude_window_from_s"] = approach_start_ < 0 ? nlohmann::json(nullptr) : nlohmann::json(approach_from_s_);
     f["attitude_natural_frequency_rad_s"] = nullptr;
@@ -220,12 +215,12 @@ class CmgClusterRun {
     double sq = 0.0, sw = 0.0, noise_max = 0.0;
     for (std::size_t j = 0; j < approach_.size(); ++j) {
       const ApproachSample& a = approach_[j];
-      const double qn = 0.5 * x[3 + axis_], wn_ = x[axis_];
+      const double qn = 0.5 * x[3 + axis_], wn = x[axis_];
       const auto jj = static_cast<std::int64_t>(j);
       if (approach_start_ >= 0 && jj >= approach_start_) {
-        noise_max = std::max({noise_max, std::fabs(qn), std::fabs(wn_)});
+        noise_max = std::max({noise_max, std::fabs(qn), std::fabs(wn)});
         sq += a.q - qn;
-        sw += a.w - wn_;
+        sw += a.w - wn;
         if ((jj - approach_start_ + 1) % every == 0) {
           fit.add(approach_from_s_ + static_cast<double>(jj - approach_start_) * tick, sq / static_cast<double>(every),
                   sw / static_cast<double>(every));
@@ -242,9 +237,9 @@ class CmgClusterRun {
     f["attitude_fit_samples"] = fit.samples();
     if (!fit.valid()) return;
     const analysis::PlanarModeFit::Pair q = fit.pair();
-    pair_shape(q.first, q.second, wn, z);
-    f["attitude_natural_frequency_rad_s"] = wn;
-    f["attitude_damping_ratio"] = z;
+    const analysis::PairShape got = analysis::pair_shape(q.first, q.second);
+    f["attitude_natural_frequency_rad_s"] = got.natural_frequency;
+    f["attitude_damping_ratio"] = got.damping_ratio;
   }
 
   double attitude_error_rad() const {

@@ -173,8 +173,8 @@ class ServoGyroRun {
       f["rate_loop"] = "not computed: the law runs below the tick rate, or a current loop drives the motor";
       return;
     }
-    const PairShape c = pair_shape(rate_loop_.continuous[0], rate_loop_.continuous[1]);
-    const PairShape sp = pair_shape(rate_loop_.sampled[0], rate_loop_.sampled[1]);
+    const analysis::PairShape c = analysis::pair_shape(rate_loop_.continuous[0], rate_loop_.continuous[1]);
+    const analysis::PairShape sp = analysis::pair_shape(rate_loop_.sampled[0], rate_loop_.sampled[1]);
     f["rate_loop_natural_frequency_rad_s_predicted"] = c.natural_frequency;
     f["rate_loop_damping_ratio_predicted"] = c.damping_ratio;
     f["rate_loop_natural_frequency_rad_s_predicted_sampled"] = sp.natural_frequency;
@@ -184,18 +184,9 @@ class ServoGyroRun {
     f["rate_loop_natural_frequency_rad_s"] = nullptr;
     f["rate_loop_damping_ratio"] = nullptr;
     if (!fit_.valid()) return;
-    std::vector<std::complex<double>> pool = fit_.roots();
-    const std::complex<double> centre = 0.5 * (rate_loop_.sampled[0] + rate_loop_.sampled[1]);
-    std::complex<double> m[2];
-    for (int i = 0; i < 2; ++i) {
-      if (pool.empty()) return;
-      std::size_t best = 0;
-      for (std::size_t j = 1; j < pool.size(); ++j)
-        if (std::abs(pool[j] - centre) < std::abs(pool[best] - centre)) best = j;
-      m[i] = pool[best];
-      pool.erase(pool.begin() + static_cast<std::ptrdiff_t>(best));
-    }
-    const PairShape got = pair_shape(m[0], m[1]);
+    const std::array<std::complex<double>, 2> m =
+        analysis::nearest_pair(fit_.roots(), 0.5 * (rate_loop_.sampled[0] + rate_loop_.sampled[1]));
+    const analysis::PairShape got = analysis::pair_shape(m[0], m[1]);
     f["rate_loop_natural_frequency_rad_s"] = got.natural_frequency;
     f["rate_loop_damping_ratio"] = got.damping_ratio;
   }

@@ -2,17 +2,11 @@
 #include "tools/devices/servo_gyro/servo_gyro_sampled.hpp"
 
 #include <cmath>
-#include <vector>
 
 #include "firmware/control/servo_gyro_law.hpp"
 #include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab::tools {
-
-PairShape pair_shape(std::complex<double> s1, std::complex<double> s2) {
-  const double wn = std::sqrt((s1 * s2).real());
-  return {wn, -(s1 + s2).real() / (2.0 * wn)};
-}
 
 ServoGyroSampled servo_gyro_sampled(const ServoGyroScene& s) {
   const models::ServoGyroParams& g = s.plant.gyro;
@@ -49,16 +43,10 @@ ServoGyroSampled servo_gyro_sampled(const ServoGyroScene& s) {
   r.continuous[1] = -a1 / 2.0 - disc;
   const double tick = s.loop.tick_s();
   r.roots = analysis::sampled_loop_roots({A, B, C}, law, {T, tick * static_cast<double>(s.loop.latency_ticks)});
-  // The sampled pair: the two roots nearest the continuous pair's centre, not counting a root twice.
-  std::vector<std::complex<double>> pool = r.roots.s;
-  const std::complex<double> centre(-a1 / 2.0, 0.0);
-  for (int i = 0; i < 2 && !pool.empty(); ++i) {
-    std::size_t best = 0;
-    for (std::size_t j = 1; j < pool.size(); ++j)
-      if (std::abs(pool[j] - centre) < std::abs(pool[best] - centre)) best = j;
-    r.sampled[i] = pool[best];
-    pool.erase(pool.begin() + static_cast<std::ptrdiff_t>(best));
-  }
+  // The sampled pair: the two roots nearest the continuous pair's centre.
+  const std::array<std::complex<double>, 2> pair = analysis::nearest_pair(r.roots.s, {-a1 / 2.0, 0.0});
+  r.sampled[0] = pair[0];
+  r.sampled[1] = pair[1];
   return r;
 }
 

@@ -23,10 +23,4 @@ struct ServoGyroSampled {
 };
 ServoGyroSampled servo_gyro_sampled(const ServoGyroScene& s);
 
-// ω_n = √(s1 s2) [rad/s] and ζ = −(s1 + s2)/(2 ω_n) of a real or conjugate pair.
-struct PairShape {
-  double natural_frequency{0.0}, damping_ratio{0.0};
-};
-PairShape pair_shape(std::complex<double> s1, std::complex<double> s2);
-
 }  // namespace gyrostab::tools
