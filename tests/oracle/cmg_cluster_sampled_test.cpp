@@ -13,13 +13,12 @@
 //       −1.1e-4. The two singularity-robust scenes are not held: their λ = λ0 e^{−μ m} changes with the
 //       configuration over the approach (docs/sampled-data.md).
 #include "tests/support/scene_run.hpp"
+#include "tests/support/scene_text.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 namespace gyrostab::cmg_cluster_sampled_test {
@@ -43,13 +42,6 @@ struct Pair {
   }
 };
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 TEST(CmgClusterSampled, ShippedSlewMeasuresTheSampledAttitudePair) {
   const std::string path = kScenes + "cmg-cluster-slew.toml";
   const nlohmann::json f = testing::figures_of(path);
@@ -61,11 +53,8 @@ TEST(CmgClusterSampled, ShippedSlewMeasuresTheSampledAttitudePair) {
   EXPECT_LT(std::fabs(p.zeta / p.zeta_s - 1.0), std::fabs(p.zeta / p.zeta_c - 1.0));
   EXPECT_GT(f["attitude_noise_response_max"].get<double>(), 0.0);
   // (b) without the rate noise: the same pair.
-  const std::string text = read_text(path);
-  std::string quiet = text;
-  const auto at = quiet.find("[report]");
-  ASSERT_NE(at, std::string::npos);
-  quiet.insert(at, "[sensors]\nrate_noise_density = 0.0\n");
+  const std::string quiet =
+      testing::replaced(testing::read_text(path), "[report]", "[sensors]\nrate_noise_density = 0.0\n[report]");
   const Pair q = Pair::of(testing::figures_of(path, quiet, kScenes));
   std::printf("  without rate noise: w_n %+.2e, zeta %+.2e from the shipped\n", p.wn / q.wn - 1.0, p.zeta / q.zeta - 1.0);
   EXPECT_LT(std::fabs(p.wn / q.wn - 1.0), 1e-5);

@@ -13,26 +13,17 @@
 // The book's δ = f/H and ω^P = c/H are the model's to 3.3e-4 and 1.8e-2: the frame's vertical rate (the Earth's
 // and the transport rate) adds to ω^P in (12.45), and the bearing damping d shifts δ by d c/(f H).
 #include "tests/support/scene_run.hpp"
+#include "tests/support/scene_text.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <regex>
-#include <sstream>
 #include <string>
 
 namespace gyrostab::gyro_vertical_sampled_test {
 
 const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 struct Erection {
   double decay{0}, freq{0}, decay_s{0}, freq_s{0}, decay_c{0}, freq_c{0};
@@ -67,9 +58,7 @@ TEST(GyroVerticalSampled, ShippedTurnSceneMeasuresTheSampledErectionRoot) {
   EXPECT_GT(noise, 0.0);
   EXPECT_LT(noise, 1e-4);
   // ... and the right one: without the sensors' noise the same root.
-  const std::string text = std::regex_replace(read_text(path), std::regex("#[^\\n]*"), "");
-  const std::string quiet = std::regex_replace(text, std::regex("\\n\\[sensors\\][^\\[]*"), "\n");
-  ASSERT_NE(quiet, text);
+  const std::string quiet = testing::without_table(testing::read_text(path), "sensors");
   const nlohmann::json q = testing::figures_of(path, quiet, kScenes);
   const Erection n = Erection::of(q);
   EXPECT_EQ(q["erection_noise_response_max_rad"].get<double>(), 0.0);

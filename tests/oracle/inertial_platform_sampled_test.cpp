@@ -15,26 +15,17 @@
 //       1e-4 on the single-axis platform (measured −1.7e-6); the coupled platforms' servos add their own lag
 //       (−9.5e-4 three-axis, +12 % position gyros), printed, not asserted.
 #include "tests/support/scene_run.hpp"
+#include "tests/support/scene_text.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <regex>
-#include <sstream>
 #include <string>
 
 namespace gyrostab::inertial_platform_sampled_test {
 
 const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 TEST(InertialPlatformSampled, ShippedFlightsMeasureTheSampledSchulerPeriod) {
   for (const char* name : {"inertial-platform-schuler.toml", "inertial-platform-single-axis.toml",
@@ -67,16 +58,10 @@ TEST(InertialPlatformSampled, ShippedFlightsMeasureTheSampledSchulerPeriod) {
 
 TEST(InertialPlatformSampled, ParkedSingleAxisIsTheSampledRoot) {
   const std::string path = kScenes + "inertial-platform-single-axis.toml";
-  // Without the comments and the segments after the first, which then lasts the whole run: parked.
-  std::string text = std::regex_replace(read_text(path), std::regex("#[^\\n]*"), "");
-  for (const char* table : {"segment2", "segment3", "segment4"}) {
-    const std::string v = std::regex_replace(text, std::regex(std::string("\\n\\[") + table + "\\][^\\[]*"), "\n");
-    ASSERT_NE(v, text) << table;
-    text = v;
-  }
-  const std::string parked =
-      std::regex_replace(text, std::regex("\\[segment1\\]\\s*\\nduration_s = [0-9.]+"), "[segment1]\nduration_s = 10800.0");
-  ASSERT_NE(parked, text);
+  // Without the segments after the first, which then lasts the whole run: parked.
+  std::string text = testing::read_text(path);
+  for (const char* table : {"segment2", "segment3", "segment4"}) text = testing::without_table(text, table);
+  const std::string parked = testing::replaced(text, "[segment1]\nduration_s = 600.0", "[segment1]\nduration_s = 10800.0");
   const nlohmann::json f = testing::figures_of(path, parked, kScenes);
   const nlohmann::json& c1 = f["channels"][0];
   ASSERT_TRUE(c1["period_s"].is_number()) << f.dump();
