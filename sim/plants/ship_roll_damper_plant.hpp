@@ -53,6 +53,7 @@ struct ShipRollDamperPlantParams {
   double brake_full_Nms{1e7};  // brake at precession_brake = 1 [N m s/rad]
   motion::SeaRollMomentParams sea{};
   ShipRollDamperSensorParams sensors{};
+  double initial_roll{0.0};  // φ at t = 0, both ships (a roll-decay trial in calm water) [rad]
 };
 
 class ShipRollDamperPlant {
@@ -86,6 +87,8 @@ class ShipRollDamperPlant {
         rng_precession_(t.seed, kPrecessionRateStream) {
     x_.setZero();
     x_ref_.setZero();
+    x_[Ship::kRoll] = p.initial_roll;
+    x_ref_[Ship::kRoll] = p.initial_roll;
   }
 
   void sense(std::int64_t tick, msg::SensorFrame& f) {

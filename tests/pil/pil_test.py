@@ -40,6 +40,7 @@ SAFE_STATE_BIT = 1 << 9  # FaultBit::kSafeState
 SCENES = {
     "ship-roll-damper-active": "ship_roll_damper",
     "ship-roll-damper-passive": "ship_roll_damper",
+    "ship-roll-damper-roll-decay": "ship_roll_damper",
     "power-stabilizer": "power_stabilizer",
     "power-stabilizer-drive": "power_stabilizer",
     "power-stabilizer-precession": "power_stabilizer",

@@ -11,10 +11,15 @@ extern const DeviceDescriptor kShipRollDamper{
         "stops (sim/plants/ship_roll_damper_plant.hpp, docs/models/ship-roll-damper.md), in a regular or "
         "irregular beam sea, under the firmware's passive precession brake or active precession control. The "
         "same ship with the gyro locked runs in the same sea as the unstabilized reference. Shipped: "
-        "`sim/scenes/ship-roll-damper-passive.toml`, `sim/scenes/ship-roll-damper-active.toml`. Integrator: "
+        "`sim/scenes/ship-roll-damper-passive.toml`, `sim/scenes/ship-roll-damper-active.toml`, and a roll-decay "
+        "trial in calm water, `sim/scenes/ship-roll-damper-roll-decay.toml`. Integrator: "
         "`rk4` (the only one).",
     .figures =
         "The passive keys are refused with `law = \"active\"` and the active keys with `law = \"passive\"`. "
+        "A roll-decay trial (calm water: a regular sea of E0 = 0, `[ship] roll0_deg` ≠ 0) adds `decay_modes`: per "
+        "root of the loop near the upright `decay_rate_per_s`, `frequency_rad_s` (measured: a recurrence fitted to "
+        "φ every 50 ms; `decay_fit_samples`) beside `_predicted` (continuous) and `_predicted_sampled` (hold, "
+        "latency, the firmware's law; `sampled_loop_max_abs_z`). "
         "Figures: `roll_rms_rad`, `roll_rms_unstabilized_rad`, `roll_rms_ratio` (their ratio σ/σ₀), `roll_reduction` (1 − σ/σ₀, what the field calls roll reduction), "
         "`roll_max_rad`, `roll_max_unstabilized_rad`, `precession_max_rad`, `precession_torque_max_Nm`, "
         "`wave_moment_rms_Nm`, `statistics_from_s`, `stop_penetration_max_rad` and "

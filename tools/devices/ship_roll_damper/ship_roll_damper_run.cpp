@@ -4,6 +4,7 @@
 // and the scene's plant and controller for the run modes.
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -11,8 +12,10 @@
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/analysis/running_stats.hpp"
 #include "tools/devices/device_scene_of.hpp"
+#include "tools/devices/ship_roll_damper/ship_roll_damper_sampled.hpp"
 #include "tools/devices/ship_roll_damper/ship_roll_damper_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
 
@@ -36,9 +39,18 @@ class ShipRollDamperRun {
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
         settle_tick_(static_cast<std::int64_t>(s.settle_s / s.loop.tick_s())),
-        window_(std::min(settle_tick_, s.loop.ticks() / 2), static_cast<std::int64_t>(10.0 / s.loop.tick_s())) {}
+        window_(std::min(settle_tick_, s.loop.ticks() / 2), static_cast<std::int64_t>(10.0 / s.loop.tick_s())),
+        decay_trial_(roll_decay_trial(s)),
+        decay_every_(std::max<std::int64_t>(1, static_cast<std::int64_t>(kDecaySampleS / s.loop.tick_s()))),
+        decay_(decay_trial_ ? ship_roll_damper_sampled(s) : ShipRollDamperSampled{}),
+        decay_fit_(0.0, decay_trial_ ? s.loop.duration_s : -1.0, s.loop.tick_s() * static_cast<double>(decay_every_),
+                   static_cast<int>(decay_.roots.s.size()) + 2) {}
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
+  void sense(std::int64_t tick, msg::SensorFrame& f) {
+    plant_.sense(tick, f);
+    if (decay_trial_ && tick % decay_every_ == 0)
+      decay_fit_.add(static_cast<double>(tick) * s_.loop.tick_s(), plant_.roll_rad());
+  }
   void actuate(const msg::ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
@@ -89,6 +101,12 @@ class ShipRollDamperRun {
   }
 
   nlohmann::json figures() const {
+    nlohmann::json f = base_figures();
+    decay_figures(f);
+    return f;
+  }
+
+  nlohmann::json base_figures() const {
     // The field's "roll reduction" is 1 − σ/σ₀ (84 % means the rms roll is 16 % of the unstabilized one).
     const double ratio = roll_ref_.rms() > 0 ? roll_.rms() / roll_ref_.rms() : 1.0;
     return {{"roll_rms_rad", roll_.rms()},
@@ -200,6 +218,44 @@ class ShipRollDamperRun {
   double roll_moment_peak_{0.0}, yaw_moment_peak_{0.0}, yaw_unit_peak_{0.0}, pitch_moment_peak_{0.0};
   analysis::RunningStats yaw_moment_;
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
+  bool decay_trial_;
+  std::int64_t decay_every_;
+  ShipRollDamperSampled decay_;
+  analysis::LinearPredictionMeter decay_fit_;
+
+  // A roll-decay trial: calm water (a regular sea of E0 = 0), a ship let go from a heel, the law every tick.
+  // The roots of the loop near the upright (ship_roll_damper_sampled.hpp), predicted and measured: a recurrence
+  // fitted to φ every kDecaySampleS over the run, each root nearest its sampled prediction.
+  static constexpr double kDecaySampleS = 0.05;
+  static bool roll_decay_trial(const ShipRollDamperScene& s) {
+    return s.plant.sea.regular() && s.plant.sea.wave.E0 == 0.0 && s.plant.initial_roll != 0.0 &&
+           s.controller.runtime.control_divisor == 1 && !s.controller.drive.enabled;
+  }
+  void decay_figures(nlohmann::json& f) const {
+    if (!decay_trial_) return;
+    f["sampled_loop_max_abs_z"] = decay_.roots.max_abs_z;
+    f["decay_fit_samples"] = decay_fit_.samples();
+    const std::vector<std::complex<double>> fitted =
+        decay_fit_.valid() ? decay_fit_.roots() : std::vector<std::complex<double>>{};
+    nlohmann::json modes = nlohmann::json::array();
+    for (std::size_t i = 0; i < decay_.continuous.size(); ++i) {
+      const std::complex<double> c = decay_.continuous[i], sm = decay_.sampled[i];
+      nlohmann::json m{{"decay_rate_per_s_predicted", -c.real()},
+                       {"frequency_rad_s_predicted", c.imag()},
+                       {"decay_rate_per_s_predicted_sampled", -sm.real()},
+                       {"frequency_rad_s_predicted_sampled", std::fabs(sm.imag())}};
+      if (!fitted.empty()) {
+        const std::complex<double> got = analysis::nearest_root(fitted, sm);
+        m["decay_rate_per_s"] = -got.real();
+        m["frequency_rad_s"] = std::fabs(got.imag());
+      } else {
+        m["decay_rate_per_s"] = nullptr;
+        m["frequency_rad_s"] = nullptr;
+      }
+      modes.push_back(m);
+    }
+    f["decay_modes"] = modes;
+  }
 };
 
 struct ShipRollDamperTraits {

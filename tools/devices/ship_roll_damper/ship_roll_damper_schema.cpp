@@ -39,6 +39,10 @@ constexpr schema::Field<S> kFields[] = {
     F::number("ship", "d1", "N m s/rad", Range::non_negative(), "roll damping", GS_NUMBER(plant.ship.d1)),
     F::number("ship", "w", "", Range::non_negative(), "wall-sided coefficient BM/(2 GM); 0: constant GM",
               GS_NUMBER(plant.ship.w)),
+    F::number("ship", "roll0_deg", "deg", Range::closed(-30.0, 30.0),
+              "roll angle at t = 0, both ships (a roll-decay trial: with a calm sea, [sea] kind = \"regular\", E0 = 0)",
+              GS_NUMBER(plant.initial_roll))
+        .degrees(),
     F::number("gyro", "B", "kg m²", Range::positive(), "case + rotor inertia about the precession axis 2",
               GS_NUMBER(plant.ship.B))
         .req(),
