@@ -25,27 +25,10 @@ namespace gyrostab::cmg_cluster_sampled_test {
 
 const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
 
-struct Pair {
-  double wn{0}, zeta{0}, wn_s{0}, zeta_s{0}, wn_c{0}, zeta_c{0};
-  static Pair of(const nlohmann::json& f) {
-    EXPECT_TRUE(f["attitude_natural_frequency_rad_s"].is_number()) << f.dump();
-    if (!f["attitude_natural_frequency_rad_s"].is_number()) return {};
-    return {f["attitude_natural_frequency_rad_s"].get<double>(), f["attitude_damping_ratio"].get<double>(),
-            f["attitude_natural_frequency_rad_s_predicted_sampled"].get<double>(),
-            f["attitude_damping_ratio_predicted_sampled"].get<double>(),
-            f["attitude_natural_frequency_rad_s_predicted"].get<double>(),
-            f["attitude_damping_ratio_predicted"].get<double>()};
-  }
-  void print(const char* what) const {
-    std::printf("  %s: w_n %.9g (sampled %+.2e, design %+.2e), zeta %.9g (sampled %+.2e, design %+.2e)\n", what, wn,
-                wn / wn_s - 1.0, wn / wn_c - 1.0, zeta, zeta / zeta_s - 1.0, zeta / zeta_c - 1.0);
-  }
-};
-
 TEST(CmgClusterSampled, ShippedSlewMeasuresTheSampledAttitudePair) {
   const std::string path = kScenes + "cmg-cluster-slew.toml";
   const nlohmann::json f = testing::figures_of(path);
-  const Pair p = Pair::of(f);
+  const testing::PairFigures p = testing::PairFigures::of(f, "attitude");
   p.print("cmg-cluster-slew");
   EXPECT_LT(std::fabs(p.wn / p.wn_s - 1.0), 1e-3);
   EXPECT_LT(std::fabs(p.zeta / p.zeta_s - 1.0), 1e-3);
@@ -55,14 +38,14 @@ TEST(CmgClusterSampled, ShippedSlewMeasuresTheSampledAttitudePair) {
   // (b) without the rate noise: the same pair.
   const std::string quiet =
       testing::replaced(testing::read_text(path), "[report]", "[sensors]\nrate_noise_density = 0.0\n[report]");
-  const Pair q = Pair::of(testing::figures_of(path, quiet, kScenes));
+  const testing::PairFigures q = testing::PairFigures::of(testing::figures_of(path, quiet, kScenes), "attitude");
   std::printf("  without rate noise: w_n %+.2e, zeta %+.2e from the shipped\n", p.wn / q.wn - 1.0, p.zeta / q.zeta - 1.0);
   EXPECT_LT(std::fabs(p.wn / q.wn - 1.0), 1e-5);
   EXPECT_LT(std::fabs(p.zeta / q.zeta - 1.0), 1e-5);
 }
 
 TEST(CmgClusterSampled, PseudoInverseThroughTheSingularRegionToo) {
-  const Pair p = Pair::of(testing::figures_of(kScenes + "cmg-cluster-singularity-pseudo-inverse.toml"));
+  const testing::PairFigures p = testing::PairFigures::of(testing::figures_of(kScenes + "cmg-cluster-singularity-pseudo-inverse.toml"), "attitude");
   p.print("cmg-cluster-singularity-pseudo-inverse");
   EXPECT_LT(std::fabs(p.wn / p.wn_s - 1.0), 1e-3);
   EXPECT_LT(std::fabs(p.zeta / p.zeta_s - 1.0), 1e-3);

@@ -25,32 +25,18 @@ namespace gyrostab::gyro_vertical_sampled_test {
 
 const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
 
-struct Erection {
-  double decay{0}, freq{0}, decay_s{0}, freq_s{0}, decay_c{0}, freq_c{0};
-  static Erection of(const nlohmann::json& f) {
-    EXPECT_TRUE(f["erection_decay_rate_per_s"].is_number()) << f.dump();
-    if (!f["erection_decay_rate_per_s"].is_number()) return {};
-    return {f["erection_decay_rate_per_s"].get<double>(),
-            f["erection_frequency_rad_s"].get<double>(),
-            f["erection_decay_rate_per_s_predicted_sampled"].get<double>(),
-            f["erection_frequency_rad_s_predicted_sampled"].get<double>(),
-            f["erection_decay_rate_per_s_predicted"].get<double>(),
-            f["erection_frequency_rad_s_predicted"].get<double>()};
-  }
-};
-
 TEST(GyroVerticalSampled, ShippedTurnSceneMeasuresTheSampledErectionRoot) {
   const std::string path = kScenes + "gyro-vertical-aircraft-turn.toml";
   const nlohmann::json f = testing::figures_of(path);
-  const Erection e = Erection::of(f);
-  std::printf("  decay %.9g: sampled %+.2e, continuous %+.2e, book delta %+.2e\n", e.decay, e.decay / e.decay_s - 1.0,
-              e.decay / e.decay_c - 1.0, e.decay_c / f["delta_s"].get<double>() - 1.0);
-  std::printf("  frequency %.9g: sampled %+.2e, continuous %+.2e, book omega_P %+.2e\n", e.freq, e.freq / e.freq_s - 1.0,
-              e.freq / e.freq_c - 1.0, e.freq_c / f["omega_P_rad_s"].get<double>() - 1.0);
-  EXPECT_LT(std::fabs(e.decay / e.decay_s - 1.0), 1e-4);
-  EXPECT_LT(std::fabs(e.freq / e.freq_s - 1.0), 1e-4);
-  EXPECT_LT(std::fabs(e.decay / e.decay_s - 1.0), std::fabs(e.decay / e.decay_c - 1.0));
-  EXPECT_LT(std::fabs(e.freq / e.freq_s - 1.0), std::fabs(e.freq / e.freq_c - 1.0));
+  const testing::ModeFigures e = testing::ModeFigures::of(f, "erection");
+  std::printf("  decay %.9g: sampled %+.2e, continuous %+.2e, book delta %+.2e\n", e.decay, e.decay / e.decay_sampled - 1.0,
+              e.decay / e.decay_continuous - 1.0, e.decay_continuous / f["delta_s"].get<double>() - 1.0);
+  std::printf("  frequency %.9g: sampled %+.2e, continuous %+.2e, book omega_P %+.2e\n", e.freq, e.freq / e.freq_sampled - 1.0,
+              e.freq / e.freq_continuous - 1.0, e.freq_continuous / f["omega_P_rad_s"].get<double>() - 1.0);
+  EXPECT_LT(std::fabs(e.decay / e.decay_sampled - 1.0), 1e-4);
+  EXPECT_LT(std::fabs(e.freq / e.freq_sampled - 1.0), 1e-4);
+  EXPECT_LT(std::fabs(e.decay / e.decay_sampled - 1.0), std::fabs(e.decay / e.decay_continuous - 1.0));
+  EXPECT_LT(std::fabs(e.freq / e.freq_sampled - 1.0), std::fabs(e.freq / e.freq_continuous - 1.0));
   EXPECT_LT(f["sampled_loop_max_abs_z"].get<double>(), 1.0);
   // (b) a small correction ...
   const double noise = f["erection_noise_response_max_rad"].get<double>();
@@ -60,7 +46,7 @@ TEST(GyroVerticalSampled, ShippedTurnSceneMeasuresTheSampledErectionRoot) {
   // ... and the right one: without the sensors' noise the same root.
   const std::string quiet = testing::without_table(testing::read_text(path), "sensors");
   const nlohmann::json q = testing::figures_of(path, quiet, kScenes);
-  const Erection n = Erection::of(q);
+  const testing::ModeFigures n = testing::ModeFigures::of(q, "erection");
   EXPECT_EQ(q["erection_noise_response_max_rad"].get<double>(), 0.0);
   std::printf("  noiseless: decay %+.2e, frequency %+.2e from the shipped run\n", e.decay / n.decay - 1.0,
               e.freq / n.freq - 1.0);

@@ -122,7 +122,7 @@ TEST(PowerStabilizerSampled, ShippedScenesMeasureTheSampledRoots) {
     SCOPED_TRACE(name);
     const std::string path = kScenes + name + ".toml";
     const nlohmann::json f = figures_of(path, read_text(path));
-    const testing::NutationFigures n = testing::NutationFigures::of(f);
+    const testing::ModeFigures n = testing::ModeFigures::of(f);
     n.print(name);
     EXPECT_LT(std::fabs(n.decay_vs_sampled()), 1e-3);
     EXPECT_LT(std::fabs(n.freq_vs_sampled()), 1e-3);
@@ -210,7 +210,7 @@ TEST(PowerStabilizerSampled, MeasurementWindowAndOperatingPointFollowTheSteps) {
   std::string swapped = replaced(shipped, "M1_time_s = 3.0", "M1_time_s = 1.0");
   swapped = replaced(swapped, "M2_time_s = 1.0", "M2_time_s = 3.0");
   const nlohmann::json f55 = figures_of(path, replaced(swapped, "rpm = 19098.6 ", "rpm = 9120.0 "));
-  const testing::NutationFigures n55 = testing::NutationFigures::of(f55);
+  const testing::ModeFigures n55 = testing::ModeFigures::of(f55);
   n55.print("platform step first, 55 rad/s");
   EXPECT_DOUBLE_EQ(f55["nutation_window_from_s"].get<double>(), 3.02);
   EXPECT_NEAR(f55["nutation_operating_point_beta_rad"].get<double>(), 0.1, 1e-12);
@@ -220,7 +220,7 @@ TEST(PowerStabilizerSampled, MeasurementWindowAndOperatingPointFollowTheSteps) {
   const auto decay_error = [&](const std::string& t) {
     const nlohmann::json f = figures_of(path, t);
     EXPECT_DOUBLE_EQ(f["nutation_operating_point_beta_rad"].get<double>(), 0.0);
-    return testing::NutationFigures::of(f).decay_vs_sampled();
+    return testing::ModeFigures::of(f).decay_vs_sampled();
   };
   const double e20 = decay_error(only_m1), e10 = decay_error(replaced(only_m1, "M1_Nm = 20.0 ", "M1_Nm = 10.0 "));
   std::printf("  platform step only, decay against the prediction at beta0: 20 N m %+.3e, 10 N m %+.3e (ratio %.2f)\n",

@@ -20,25 +20,8 @@ namespace gyrostab::servo_gyro_sampled_test {
 
 const std::string kScenes = GYROSTAB_SOURCE_DIR "/sim/scenes/";
 
-struct Pair {
-  double wn{0}, zeta{0}, wn_s{0}, zeta_s{0}, wn_c{0}, zeta_c{0};
-  static Pair of(const nlohmann::json& f) {
-    EXPECT_TRUE(f["rate_loop_natural_frequency_rad_s"].is_number()) << f.dump();
-    if (!f["rate_loop_natural_frequency_rad_s"].is_number()) return {};
-    return {f["rate_loop_natural_frequency_rad_s"].get<double>(), f["rate_loop_damping_ratio"].get<double>(),
-            f["rate_loop_natural_frequency_rad_s_predicted_sampled"].get<double>(),
-            f["rate_loop_damping_ratio_predicted_sampled"].get<double>(),
-            f["rate_loop_natural_frequency_rad_s_predicted"].get<double>(),
-            f["rate_loop_damping_ratio_predicted"].get<double>()};
-  }
-  void print(const char* what) const {
-    std::printf("  %s: w_n %.9g (sampled %+.2e, continuous %+.2e), zeta %.9g (sampled %+.2e, continuous %+.2e)\n",
-                what, wn, wn / wn_s - 1.0, wn / wn_c - 1.0, zeta, zeta / zeta_s - 1.0, zeta / zeta_c - 1.0);
-  }
-};
-
 TEST(ServoGyroSampled, ShippedSceneMeasuresTheSampledRateLoop) {
-  const Pair p = Pair::of(testing::figures_of(kScenes + "servo-gyro.toml"));
+  const testing::PairFigures p = testing::PairFigures::of(testing::figures_of(kScenes + "servo-gyro.toml"), "rate_loop");
   p.print("servo-gyro");
   EXPECT_LT(std::fabs(p.wn / p.wn_s - 1.0), 1e-3);
   EXPECT_LT(std::fabs(p.zeta / p.zeta_s - 1.0), 1e-3);
@@ -51,7 +34,7 @@ TEST(ServoGyroSampled, WithoutTheGyroscopicCouplingTheRecurrenceIsExact) {
   const std::string path = kScenes + "servo-gyro.toml";
   const std::string text = testing::read_text(path);
   const std::string v = testing::replaced(text, "\nH = 1.0 ", "\nH = 1e-6 ");
-  const Pair p = Pair::of(testing::figures_of(path, v, kScenes));
+  const testing::PairFigures p = testing::PairFigures::of(testing::figures_of(path, v, kScenes), "rate_loop");
   p.print("H = 1e-6");
   EXPECT_LT(std::fabs(p.wn / p.wn_s - 1.0), 1e-9);
   EXPECT_LT(std::fabs(p.zeta / p.zeta_s - 1.0), 1e-9);

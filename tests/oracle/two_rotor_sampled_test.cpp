@@ -82,7 +82,7 @@ TEST(TwoRotorSampled, ShippedScenesMeasureTheSampledRoots) {
     SCOPED_TRACE(name);
     const std::string path = kScenes + name + ".toml";
     const nlohmann::json f = figures_of(path, read_text(path));
-    const testing::NutationFigures n = testing::NutationFigures::of(f);
+    const testing::ModeFigures n = testing::ModeFigures::of(f);
     n.print(name);
     EXPECT_LT(std::fabs(n.decay_vs_sampled()), 1e-3);
     EXPECT_LT(std::fabs(n.freq_vs_sampled()), 1e-3);

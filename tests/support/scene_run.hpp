@@ -44,20 +44,21 @@ inline nlohmann::json figures_of(const std::string& path, const std::string& tex
   return r.report["figures"];
 }
 
-// A report's nutation figures: measured, the sampled loop's and the continuous loop's (docs/sampled-data.md),
-// with their relative differences.
-struct NutationFigures {
+// A report's figures of one mode (`<mode>_decay_rate_per_s`, `<mode>_frequency_rad_s`): measured, the sampled
+// loop's and the continuous loop's (docs/sampled-data.md), with their relative differences.
+struct ModeFigures {
   double decay{0}, freq{0}, decay_sampled{0}, freq_sampled{0}, decay_continuous{0}, freq_continuous{0};
 
-  static NutationFigures of(const nlohmann::json& f) {
-    EXPECT_TRUE(f["nutation_decay_rate_per_s"].is_number()) << f.dump();
-    if (!f["nutation_decay_rate_per_s"].is_number()) return {};
-    return {f["nutation_decay_rate_per_s"].get<double>(),
-            f["nutation_frequency_rad_s"].get<double>(),
-            f["nutation_decay_rate_per_s_predicted_sampled"].get<double>(),
-            f["nutation_frequency_rad_s_predicted_sampled"].get<double>(),
-            f["nutation_decay_rate_per_s_predicted"].get<double>(),
-            f["nutation_frequency_rad_s_predicted"].get<double>()};
+  static ModeFigures of(const nlohmann::json& f, const std::string& mode = "nutation") {
+    const std::string d = mode + "_decay_rate_per_s", w = mode + "_frequency_rad_s";
+    EXPECT_TRUE(f[d].is_number()) << f.dump();
+    if (!f[d].is_number()) return {};
+    return {f[d].get<double>(),
+            f[w].get<double>(),
+            f[d + "_predicted_sampled"].get<double>(),
+            f[w + "_predicted_sampled"].get<double>(),
+            f[d + "_predicted"].get<double>(),
+            f[w + "_predicted"].get<double>()};
   }
   double decay_vs_sampled() const { return decay / decay_sampled - 1.0; }
   double freq_vs_sampled() const { return freq / freq_sampled - 1.0; }
@@ -67,6 +68,28 @@ struct NutationFigures {
     std::printf("  %s: decay %.7f (sampled %.7f %+.2e, continuous %.7f %+.2e), freq %.6f (sampled %.6f %+.2e, "
                 "continuous %.6f %+.2e)\n", name, decay, decay_sampled, decay_vs_sampled(), decay_continuous,
                 decay_vs_continuous(), freq, freq_sampled, freq_vs_sampled(), freq_continuous, freq_vs_continuous());
+  }
+};
+
+// A report's pair near a double root as `<pair>_natural_frequency_rad_s` and `<pair>_damping_ratio`
+// (analysis::pair_shape): measured, the sampled loop's and the continuous design's.
+struct PairFigures {
+  double wn{0}, zeta{0}, wn_s{0}, zeta_s{0}, wn_c{0}, zeta_c{0};
+
+  static PairFigures of(const nlohmann::json& f, const std::string& pair) {
+    const std::string w = pair + "_natural_frequency_rad_s", z = pair + "_damping_ratio";
+    EXPECT_TRUE(f[w].is_number()) << f.dump();
+    if (!f[w].is_number()) return {};
+    return {f[w].get<double>(),
+            f[z].get<double>(),
+            f[w + "_predicted_sampled"].get<double>(),
+            f[z + "_predicted_sampled"].get<double>(),
+            f[w + "_predicted"].get<double>(),
+            f[z + "_predicted"].get<double>()};
+  }
+  void print(const char* what) const {
+    std::printf("  %s: w_n %.9g (sampled %+.2e, continuous %+.2e), zeta %.9g (sampled %+.2e, continuous %+.2e)\n",
+                what, wn, wn / wn_s - 1.0, wn / wn_c - 1.0, zeta, zeta / zeta_s - 1.0, zeta / zeta_c - 1.0);
   }
 };
 
