@@ -8,6 +8,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "sim/analysis/state_feedback_linearisation.hpp"
+
 namespace gyrostab::tools {
 
 namespace {
@@ -88,22 +90,11 @@ CmgClusterSampled cmg_cluster_sampled(const CmgClusterScene& s, const plants::Cm
     return r;
   };
   const Local zero = Local::Zero();
-  const Eigen::Vector4d u0 = command(zero, Eigen::Vector3d::Zero());
-  Eigen::MatrixXd A(kN, kN), B(kN, 4), K(4, kN), Kv(4, 3);
   constexpr double h = 1e-6;
-  for (int i = 0; i < kN; ++i) {
-    Local p = zero, n = zero;
-    p[i] = h;
-    n[i] = -h;
-    A.col(i) = (rate(p, u0) - rate(n, u0)) / (2.0 * h);
-    K.col(i) = (command(p, Eigen::Vector3d::Zero()) - command(n, Eigen::Vector3d::Zero())) / (2.0 * h);
-  }
-  for (int j = 0; j < 4; ++j) {
-    Eigen::Vector4d up = u0, un = u0;
-    up[j] += h;
-    un[j] -= h;
-    B.col(j) = (rate(zero, up) - rate(zero, un)) / (2.0 * h);
-  }
+  const analysis::StateFeedbackLinearisation lin = analysis::linearise_state_feedback(
+      zero, rate, [&](const Local& xi) { return command(xi, Eigen::Vector3d::Zero()); }, h, h);
+  const Eigen::MatrixXd &A = lin.A, &B = lin.B, &K = lin.K;
+  Eigen::MatrixXd Kv(4, 3);
   for (int j = 0; j < 3; ++j) {
     const Eigen::Vector3d v = h * Eigen::Vector3d::Unit(j);
     Kv.col(j) = (command(zero, v) - command(zero, -v)) / (2.0 * h);

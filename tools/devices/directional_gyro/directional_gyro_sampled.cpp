@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "firmware/control/directional_gyro_corrections.hpp"
+#include "sim/analysis/state_feedback_linearisation.hpp"
 #include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab::tools {
@@ -33,22 +34,9 @@ DirectionalGyroSampled directional_gyro_sampled(const DirectionalGyroScene& s, c
     m.derivative(0.0, x, dx);
     return Eigen::Vector2d(dx[0], dx[1]);
   };
-  const Eigen::Vector2d u0 = law(x0);
-  Eigen::MatrixXd A(2, 2), B(2, 2), K(2, 2);
-  constexpr double h = 1e-6;  // [rad]: the kinematics' curvature is O(1), truncation O(1e-12)
-  for (int i = 0; i < 2; ++i) {
-    Model::State xp = x0, xm = x0;
-    xp[i] += h;
-    xm[i] -= h;
-    A.col(i) = (f(xp, u0) - f(xm, u0)) / (2.0 * h);
-    K.col(i) = (law(xp) - law(xm)) / (2.0 * h);
-  }
-  for (int j = 0; j < 2; ++j) {
-    Eigen::Vector2d up = u0, um = u0;
-    up[j] += 1e-6;
-    um[j] -= 1e-6;
-    B.col(j) = (f(x0, up) - f(x0, um)) / 2e-6;
-  }
+  // [rad]: the kinematics' curvature is O(1), truncation O(1e-12); the torques enter linearly.
+  const analysis::StateFeedbackLinearisation lin = analysis::linearise_state_feedback(x0, f, law, 1e-6, 1e-6);
+  const Eigen::MatrixXd &A = lin.A, &B = lin.B, &K = lin.K;
   const analysis::StateFeedbackLoop loop = analysis::restrict_state_feedback(A, B, K, {0, 1});
   DirectionalGyroSampled r;
   const double book = -s.controller.law.k / s.controller.law.H;

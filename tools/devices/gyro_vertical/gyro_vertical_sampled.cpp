@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "firmware/control/gyro_vertical_correction.hpp"
+#include "sim/analysis/state_feedback_linearisation.hpp"
 #include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab::tools {
@@ -39,17 +40,9 @@ GyroVerticalSampled gyro_vertical_sampled(const GyroVerticalScene& s, std::compl
     m.derivative(t0, x, dx);
     return dx;
   };
-  const Eigen::Vector2d u0 = law(x0);
-  Eigen::MatrixXd A(kN, kN), B(kN, 2), K(2, kN);
-  constexpr double h = 1e-6;  // the model and the law are linear here: the differences are exact
-  for (int i = 0; i < kN; ++i) {
-    Model::State xp = x0, xm = x0;
-    xp[i] += h;
-    xm[i] -= h;
-    A.col(i) = (f(xp, u0) - f(xm, u0)) / (2.0 * h);
-    K.col(i) = (law(xp) - law(xm)) / (2.0 * h);
-  }
-  for (int j = 0; j < 2; ++j) B.col(j) = f(x0, u0 + Eigen::Vector2d::Unit(j)) - f(x0, u0);
+  // The model and the law are linear here: the differences are exact.
+  const analysis::StateFeedbackLinearisation lin = analysis::linearise_state_feedback(x0, f, law, 1e-6, 1.0);
+  const Eigen::MatrixXd &A = lin.A, &B = lin.B, &K = lin.K;
   GyroVerticalSampled r;
   r.Kx = K;
   {

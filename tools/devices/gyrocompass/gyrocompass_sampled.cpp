@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "sim/analysis/state_feedback_linearisation.hpp"
 #include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab::tools {
@@ -26,36 +27,20 @@ GyrocompassSampled gyrocompass_sampled(const GyrocompassScene& s) {
   const Model::State x0 = plant.state();
   firmware::GyrocompassConfig c = s.controller;
   c.law.torque_limit_Nm = std::numeric_limits<double>::max();
-  const auto law = [&](const Model::State& x, double& M1, double& M2) {
+  const auto law = [&](const Model::State& x) {
     const firmware::GyrocompassTorques t = firmware::gyrocompass_torques(c.law, m.level_signal(0.0, x));
-    M1 = t.M1;
-    M2 = t.M2;
+    return Eigen::Vector2d(t.M1, t.M2);
   };
-  double M1 = 0.0, M2 = 0.0;
-  law(x0, M1, M2);
-  const auto f = [&](const Model::State& x, double u1, double u2) {
-    m.inputs.M1 = u1;
-    m.inputs.M2 = u2;
+  const auto f = [&](const Model::State& x, const Eigen::Vector2d& u) {
+    m.inputs.M1 = u[0];
+    m.inputs.M2 = u[1];
     Model::State dx;
     m.derivative(0.0, x, dx);
     return dx;
   };
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(kN, kN), B = Eigen::MatrixXd::Zero(kN, 2), K = Eigen::MatrixXd::Zero(2, kN);
-  for (int i = 0; i < kN; ++i) {
-    const double h = 1e-7;
-    Model::State xp = x0, xm = x0;
-    xp[i] += h;
-    xm[i] -= h;
-    A.col(i) = (f(xp, M1, M2) - f(xm, M1, M2)) / (2.0 * h);
-    double a1, a2, b1, b2;
-    law(xp, a1, a2);
-    law(xm, b1, b2);
-    K(0, i) = (a1 - b1) / (2.0 * h);
-    K(1, i) = (a2 - b2) / (2.0 * h);
-  }
   // The torques enter linearly: a unit step is exact.
-  B.col(0) = f(x0, M1 + 1.0, M2) - f(x0, M1, M2);
-  B.col(1) = f(x0, M1, M2 + 1.0) - f(x0, M1, M2);
+  const analysis::StateFeedbackLinearisation lin = analysis::linearise_state_feedback(x0, f, law, 1e-7, 1.0);
+  const Eigen::MatrixXd &A = lin.A, &B = lin.B, &K = lin.K;
   // The states that act: the swing γ only with Θ_s > 0 (else it stays at rest, a neutral pair); the precession
   // form leaves α', β' unused (zero rows and columns).
   std::vector<int> keep;

@@ -1,6 +1,7 @@
 // Docs: docs/sampled-data.md, docs/models/ship-roll-damper.md.
 #include "tools/devices/ship_roll_damper/ship_roll_damper_sampled.hpp"
 
+#include "sim/analysis/state_feedback_linearisation.hpp"
 #include "sim/dynamics/eigenvalues.hpp"
 
 namespace gyrostab::tools {
@@ -21,26 +22,18 @@ ShipRollDamperSampled ship_roll_damper_sampled(const ShipRollDamperScene& s) {
     firmware::ShipRollDamperLaw l(c);
     msg::ActuatorFrame cmd{};
     l.control(f, cmd);
-    return cmd.gimbal_torque_Nm[msg::kAxis2];
+    return Eigen::Matrix<double, 1, 1>(cmd.gimbal_torque_Nm[msg::kAxis2]);
   };
-  const auto f = [&](const Ship::State& x, double u) {
-    m.inputs.M2 = u;
+  const auto f = [&](const Ship::State& x, const Eigen::Matrix<double, 1, 1>& u) {
+    m.inputs.M2 = u[0];
     Ship::State dx;
     m.derivative(0.0, x, dx);
     return dx;
   };
-  const Ship::State x0 = Ship::State::Zero();
-  constexpr int kN = Ship::kStateSize;
-  Eigen::MatrixXd A(kN, kN), B(kN, 1), K(1, kN);
-  constexpr double h = 1e-7;  // [rad], [rad/s]: the large-angle terms are O(h²) here
-  for (int i = 0; i < kN; ++i) {
-    Ship::State xp = x0, xm = x0;
-    xp[i] += h;
-    xm[i] -= h;
-    A.col(i) = (f(xp, 0.0) - f(xm, 0.0)) / (2.0 * h);
-    K(0, i) = (law(xp) - law(xm)) / (2.0 * h);
-  }
-  B.col(0) = f(x0, 1.0) - f(x0, 0.0);  // M2 enters linearly
+  // [rad], [rad/s]: the large-angle terms are O(h²) here; M2 enters linearly.
+  const analysis::StateFeedbackLinearisation lin =
+      analysis::linearise_state_feedback(Ship::State::Zero().eval(), f, law, 1e-7, 1.0);
+  const Eigen::MatrixXd &A = lin.A, &B = lin.B, &K = lin.K;
   const analysis::StateFeedbackLoop loop = analysis::restrict_state_feedback(A, B, K, {0, 1, 2, 3});
   ShipRollDamperSampled r;
   const Eigen::VectorXcd ev = dynamics::eigenvalues(Eigen::MatrixXd(A + B * K));
