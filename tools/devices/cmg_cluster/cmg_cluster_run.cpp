@@ -170,6 +170,10 @@ class CmgClusterRun {
   // 0.5°: the approach's own non-linearity (the gimbals turn, the steering's Jacobian with them) shifts the
   // fitted ω_n by −2.1e-3 from 2°, −8.4e-4 from 1°, −3.1e-4 from 0.5° (the slew scene without noise).
   static constexpr double kLinearBelowRad = 0.008726646259971648;
+  // Below this share of the slew axis's motion the predicted pair is not what a planar fit measures
+  // (cmg_cluster_sampled.hpp): 0.996 and 0.981 on the slew and pseudo-inverse scenes, 0.60 where the
+  // singularity-robust scenes end.
+  static constexpr double kSinglePairShare = 0.95;
   struct ApproachSample {
     double q, w;     // q_k, ω_k [-, rad/s]
     double v[3];     // body-rate errors read [rad/s]
@@ -204,6 +208,11 @@ class CmgClusterRun {
     f["attitude_natural_frequency_rad_s_predicted_sampled"] = sampled.natural_frequency;
     f["attitude_damping_ratio_predicted_sampled"] = sampled.damping_ratio;
     f["sampled_loop_max_abs_z"] = p.roots.max_abs_z;
+    f["attitude_pair_share"] = p.share;
+    if (p.share < kSinglePairShare) {
+      f["attitude_loop"] = "the gimbal configuration couples the axes: another attitude pair carries part of the slew "
+                           "axis's motion, and the fitted pair is the two pairs' mixture";
+    }
     f["attitude_window_from_s"] = approach_start_ < 0 ? nlohmann::json(nullptr) : nlohmann::json(approach_from_s_);
     f["attitude_natural_frequency_rad_s"] = nullptr;
     f["attitude_damping_ratio"] = nullptr;

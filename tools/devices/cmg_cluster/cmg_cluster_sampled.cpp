@@ -139,13 +139,18 @@ CmgClusterSampled cmg_cluster_sampled(const CmgClusterScene& s, const plants::Cm
     if (ip >= 0) w += std::norm(v(ip)) * a0 * a0 * Jk * Jk;
     near.push_back({sv, w / v.squaredNorm()});
   }
+  double total = 0.0;
+  for (const Candidate& cand : near) total += cand.weight;
+  double chosen = 0.0;
   for (int i = 0; i < 2 && !near.empty(); ++i) {
     std::size_t best = 0;
     for (std::size_t j = 1; j < near.size(); ++j)
       if (near[j].weight > near[best].weight) best = j;
     r.sampled[i] = near[best].s;
+    chosen += near[best].weight;
     near.erase(near.begin() + static_cast<std::ptrdiff_t>(best));
   }
+  r.share = total > 0.0 ? chosen / total : 0.0;
   const analysis::ZohStep z = analysis::zoh_step(A, B, T);
   r.Phi = z.Phi;
   r.Gamma = z.Gamma;

@@ -7,7 +7,10 @@
 // the zero-order hold at the law's period and the latency (sim/analysis/sampled_loop_roots.hpp). The attitude
 // mode about the slew axis k is the pair nearest the design's J_kk s² + K_d s + K_p/2 (ω_a, ζ of the scene:
 // a double root at ζ = 1), given as ω_n = √(s1 s2) and ζ = −(s1 + s2)/(2 ω_n) — a double root's own position
-// is ill-conditioned, its sum and product are not. Also the loop over one period for the response to the
+// is ill-conditioned, its sum and product are not. The gimbal configuration can couple the axes: the rotors'
+// load on the gimbal servos, h ω·t_i on gimbal i, turns a body rate into gimbal rate errors ∝ Aᵀ ω and a torque
+// error ∝ A Aᵀ ω, diagonal in body axes for the pyramid at δ = 0 but not where the singularity-robust scenes end (δ ≈
+// (0.58, 1.63, −1.63, −0.58) rad): there two pairs share the slew axis's motion (`share`). Also the loop over one period for the response to the
 // body-rate noise (x⁺ = Φ x + Γ u[k − L], u = K x + K_v v), which the run takes off before it fits.
 #pragma once
 
@@ -24,6 +27,11 @@ struct CmgClusterSampled {
   static constexpr int kN = 18;  // ω (3), φ (3), δ (4), ν (4), servo integrals (4)
   std::complex<double> design[2]{};   // J_kk s² + K_d s + K_p/2 [1/s]
   std::complex<double> sampled[2]{};  // the sampled loop's pair nearest the design's [1/s]
+  // The pair's share of the slew axis's motion: its roots' eigenvector weight on ω_k, φ_k over that of every
+  // root near the design [-]. Near 1 where the axes decouple (δ = 0: 0.996 on the slew scene); where the
+  // configuration couples them, another pair carries the rest, and a planar fit of (q_k, ω_k) measures the
+  // two pairs' mixture, not this pair.
+  double share{0.0};
   analysis::SampledLoopRoots roots;
   Eigen::MatrixXd Phi, Gamma, Kx, Kv;  // kN×kN, kN×4, 4×kN, 4×3
 };
