@@ -8,15 +8,13 @@
 // firmware/control/cmg_steering.hpp (ν = −A⁺ u: pseudo-inverse, singularity-robust or generalized
 // singularity-robust inverse, rate limit). The generalized inverse's dither time is t = tick · T_b, the tick of
 // the sensor frame the law runs on (deterministic, the same on host and target).
-// The contract has two gimbal slots of each kind (firmware/msg/sensor_frame.hpp); the four-CMG cluster uses
-// them as follows (docs/models/cmg-cluster.md#signals):
+// Signals (docs/models/cmg-cluster.md#signals):
 // Reads (SensorFrame): carrier_angle_rad = the spacecraft attitude q_WB as 3-2-1 angles (roll, pitch, yaw)
 //   [rad] (star tracker; rebuilt into q here, valid away from pitch ±90°); carrier_rate_rad_s = ω, body axes
-//   [rad/s] (gyro package); gimbal angles δ_1, δ_2 = gimbal_angle_rad[kAxis1], [kAxis2] and δ_3, δ_4 =
-//   gimbal_rate_rad_s[kAxis1], [kAxis2] [rad] (the CMG electronics' gimbal encoders, wrapped to [−π, π)).
-// Writes (ActuatorFrame): gimbal rate commands ν_c,1, ν_c,2 = gimbal_torque_Nm[kAxis1], [kAxis2] and ν_c,3,
-//   ν_c,4 = motor_voltage_V[kAxis1], [kAxis2] [rad/s]; precession_brake = 0. The safe state's zeros command
-//   every gimbal to rest. Status: kRateLoopSaturated = the gimbal rates were scaled to max_rate;
+//   [rad/s] (gyro package); cluster_gimbal_angle_rad[i] = δ_i [rad] (the CMG electronics' gimbal encoders,
+//   wrapped to [−π, π)). The law does not need the gimbal rates cluster_gimbal_rate_rad_s.
+// Writes (ActuatorFrame): cluster_rate_command_rad_s[i] = ν_c,i [rad/s]; precession_brake = 0. The safe
+//   state's zeros command every gimbal to rest. Status: kRateLoopSaturated = the gimbal rates were scaled to max_rate;
 //   kGimbalLockGuard = the pseudo-inverse met a singular configuration (det(A Aᵀ)/h⁶ ≤ singular_floor) and
 //   commanded no rates — the CMG cluster's gimbal lock.
 // No drive (current loops): disabled. Rates: the law every control_divisor base ticks.
@@ -59,8 +57,7 @@ class CmgClusterLaw {
     const AttitudeQuaternion q = quaternion_from_euler321(
         in.carrier_angle_rad[msg::kRoll], in.carrier_angle_rad[msg::kPitch], in.carrier_angle_rad[msg::kYaw]);
     const double* w = in.carrier_rate_rad_s;
-    const double delta[kMaxCmgUnits] = {in.gimbal_angle_rad[msg::kAxis1], in.gimbal_angle_rad[msg::kAxis2],
-                                        in.gimbal_rate_rad_s[msg::kAxis1], in.gimbal_rate_rad_s[msg::kAxis2]};
+    const double* delta = in.cluster_gimbal_angle_rad;
     double H[3];
     for (int k = 0; k < 3; ++k) H[k] = gains_.J[k][0] * w[0] + gains_.J[k][1] * w[1] + gains_.J[k][2] * w[2];
     if (gains_.gyroscopic_feedforward) {
@@ -74,10 +71,7 @@ class CmgClusterLaw {
     const SteeringOutput o = steer_cmg(array_, steering_, delta, torque_, t);
     measure_ = o.measure;
     lambda_ = o.lambda;
-    cmd.gimbal_torque_Nm[msg::kAxis1] = o.rate[0];
-    cmd.gimbal_torque_Nm[msg::kAxis2] = o.rate[1];
-    cmd.motor_voltage_V[msg::kAxis1] = o.rate[2];
-    cmd.motor_voltage_V[msg::kAxis2] = o.rate[3];
+    for (int i = 0; i < kMaxCmgUnits; ++i) cmd.cluster_rate_command_rad_s[i] = o.rate[i];
     cmd.precession_brake = 0.0;
     if (o.rate_limited) cmd.status |= bit(LawStatusBit::kRateLoopSaturated);
     if (o.singular) cmd.status |= bit(LawStatusBit::kGimbalLockGuard);
@@ -112,7 +106,9 @@ class BasicCmgClusterController : public ControllerRuntime<CmgClusterLaw, Clock>
     const AttitudeQuaternion& q = c.reference;
     const double n = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
     if (!(std::fabs(n - 1.0) < 1e-9)) return ConfigCheck::refused("cmg cluster: the reference quaternion must be unit", n);
-    if (c.array.count > 4) return ConfigCheck::refused("cmg cluster: the contract carries at most 4 gimbals", c.array.count);
+    if (c.array.count > static_cast<int>(msg::kClusterUnits)) {
+      return ConfigCheck::refused("cmg cluster: the contract carries at most 4 gimbals", c.array.count);
+    }
     if (is_robust(c.steering.law) && !(c.steering.lambda0 > 0.0)) {
       return ConfigCheck::refused("cmg cluster: the singularity-robust inverse needs lambda0 > 0", c.steering.lambda0);
     }

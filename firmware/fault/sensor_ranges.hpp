@@ -30,6 +30,8 @@ struct SensorRanges {
   Range motor_current_A[msg::kGimbalAxes]{{-1e3, 1e3}, {-1e3, 1e3}};                         // [A]
   Range rotor_speed_rad_s{-1e4, 1e4};                                                        // [rad/s]
   Range encoder_count[msg::kGimbalAxes]{kAnyInt32, kAnyInt32};                               // [counts]
+  Range cluster_gimbal_angle_rad[msg::kClusterUnits]{{-kPi, kPi}, {-kPi, kPi}, {-kPi, kPi}, {-kPi, kPi}};  // [rad]
+  Range cluster_gimbal_rate_rad_s[msg::kClusterUnits]{{-1e3, 1e3}, {-1e3, 1e3}, {-1e3, 1e3}, {-1e3, 1e3}};  // [rad/s]
 };
 
 // The rotor-speed range of a device whose rotor spins at `nominal_rad_s`: the default, widened to twice the
@@ -58,6 +60,14 @@ enum class SensorSignal : std::uint8_t {
   kRotorSpeed,
   kEncoderCount1,
   kEncoderCount2,
+  kClusterAngle1,
+  kClusterAngle2,
+  kClusterAngle3,
+  kClusterAngle4,
+  kClusterRate1,
+  kClusterRate2,
+  kClusterRate3,
+  kClusterRate4,
   kNone,  // "no signal": e.g. no out-of-range signal seen yet
 };
 inline constexpr std::size_t kSensorSignalCount = static_cast<std::size_t>(SensorSignal::kNone);
@@ -88,6 +98,12 @@ constexpr void for_each_signal(const msg::SensorFrame& frame, const SensorRanges
   for (std::size_t i = 0; i < msg::kGimbalAxes; ++i) {
     fn(id(SensorSignal::kEncoderCount1, i), static_cast<double>(frame.encoder_count[i]),
        ranges.encoder_count[i]);
+  }
+  for (std::size_t i = 0; i < msg::kClusterUnits; ++i) {
+    fn(id(SensorSignal::kClusterAngle1, i), frame.cluster_gimbal_angle_rad[i], ranges.cluster_gimbal_angle_rad[i]);
+  }
+  for (std::size_t i = 0; i < msg::kClusterUnits; ++i) {
+    fn(id(SensorSignal::kClusterRate1, i), frame.cluster_gimbal_rate_rad_s[i], ranges.cluster_gimbal_rate_rad_s[i]);
   }
 }
 

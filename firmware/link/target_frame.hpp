@@ -58,13 +58,13 @@ constexpr bool sent_by_host(TargetFrameKind k) {
 
 inline constexpr std::size_t kTargetHeaderBytes = 14;
 inline constexpr std::size_t kTargetCrcBytes = 4;
-inline constexpr std::size_t kMaxConfigBytes = 768;  // the largest device Config is 552 bytes
+inline constexpr std::size_t kMaxConfigBytes = 1024;  // the largest device Config is 856 bytes (the CMG cluster's)
 
 // Hello: the image names itself and what it will accept.
 struct TargetHello {
   char image[24]{};                  // the device name, NUL-padded ("ship_roll_damper")
   std::uint32_t config_bytes{0};     // sizeof(Controller::Config) in this image
-  std::uint32_t frame_version{1};    // this file's layout version
+  std::uint32_t frame_version{2};    // this file's layout and the contract frames it carries (2: cluster fields)
   std::uint32_t clock_ns_per_count{0};  // resolution of the profile clock [virtual ns]
   std::uint32_t reserved{0};
 };

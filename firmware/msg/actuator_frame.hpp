@@ -7,7 +7,7 @@
 // M1^K, M2^K of the power stabilizer (14.19); motor_voltage_V is u of the back-EMF law (14.26)-(14.27), used
 // by drives modelled with their electrics. A plant drive reads the one its scene names.
 //
-// Safe state (status has FaultBit::kSafeState): torques and voltages are zero, the precession brake is full
+// Safe state (status has FaultBit::kSafeState): torques, voltages and cluster rate commands are zero, the precession brake is full
 // on, and a drive that sees the bit disables its bridge (zero current) whatever the other fields say.
 //
 // Layout rules as for SensorFrame: trivially copyable, standard layout, no padding, fixed size; append only.
@@ -34,12 +34,14 @@ struct ActuatorFrame {
   double motor_voltage_V[kGimbalAxes]{};
   // Precession brake on axis 2: 0 = released, 1 = full brake (case locked to the carrier) [-].
   double precession_brake{0.0};
+  // Gimbal rate command ν_c,i to each unit of a cluster (the CMG electronics close the rate loop) [rad/s].
+  double cluster_rate_command_rad_s[kClusterUnits]{};
 };
 
 static_assert(std::is_trivially_copyable_v<ActuatorFrame>, "transports memcpy the contract");
 static_assert(std::is_standard_layout_v<ActuatorFrame>, "transports rely on declaration-order layout");
-// 8+8+8+4+4 header, 5 doubles: any change here is a contract change (update LCM/CAN maps too).
-static_assert(sizeof(ActuatorFrame) == 32 + 5 * 8, "ActuatorFrame layout changed or gained padding");
+// 8+8+8+4+4 header, 5 doubles, 4 cluster doubles: any change here is a contract change (update LCM/CAN maps too).
+static_assert(sizeof(ActuatorFrame) == 32 + 5 * 8 + 4 * 8, "ActuatorFrame layout changed or gained padding");
 static_assert(alignof(ActuatorFrame) == 8);
 
 }  // namespace gyrostab::msg

@@ -10,6 +10,7 @@
 //   power stabilizer (14.20)    [kRoll] = platform φ (14.31); rates [kAxis1] = α, [kAxis2] = β  motor current
 //   monorail (14.2)             [kRoll] = φ car tilt, φ'          [kAxis2] = β gyro case, β'   motor current
 //   servo gyro (14.41)          carrier rates (14.45)             [kAxis1] = α, [kAxis2] = β   motor current
+//   CMG cluster (14.45)         attitude (3-2-1), body rates      cluster_gimbal_angle/rate = δ_i, δ_i'
 //   gimbal drive (any device)   —                                 encoder_count, rotor_speed  motor_current_A
 //
 // Axis 2 is the axis the book calls "2" (the precession / case axis, angle β) in every device of ch. 14, so a
@@ -42,6 +43,10 @@ inline constexpr std::size_t kAxis1 = 0;
 inline constexpr std::size_t kAxis2 = 1;
 inline constexpr std::size_t kGimbalAxes = 2;
 
+// Units of a multi-gyro cluster (a CMG cluster's single-gimbal control moment gyros, each with its own gimbal
+// electronics): the cluster's gimbals have their own fields, so the two axes above keep their meaning.
+inline constexpr std::size_t kClusterUnits = 4;
+
 struct SensorFrame {
   std::uint64_t tick{0};           // controller tick this frame belongs to [tick]
   std::int64_t time_ns{0};         // publish time on the plant's clock [ns]
@@ -64,12 +69,17 @@ struct SensorFrame {
   double rotor_speed_rad_s{0.0};
   // Raw gimbal encoder counts, motor side (before the gear), wrapping at 2^32 [counts].
   std::int32_t encoder_count[kGimbalAxes]{};
+  // Gimbal angle δ_i of each unit of a cluster (the unit's absolute encoder, in [−π, π)) [rad].
+  double cluster_gimbal_angle_rad[kClusterUnits]{};
+  // Gimbal rate δ_i' of each unit of a cluster, relative to the carrier (the unit's rate loop feedback) [rad/s].
+  double cluster_gimbal_rate_rad_s[kClusterUnits]{};
 };
 
 static_assert(std::is_trivially_copyable_v<SensorFrame>, "transports memcpy the contract");
 static_assert(std::is_standard_layout_v<SensorFrame>, "transports rely on declaration-order layout");
-// 8+8+8+4+4 header, 13 doubles, 2 int32: any change here is a contract change (update LCM/CAN maps too).
-static_assert(sizeof(SensorFrame) == 32 + 13 * 8 + 2 * 4, "SensorFrame layout changed or gained padding");
+// 8+8+8+4+4 header, 13 doubles, 2 int32, 8 cluster doubles: any change here is a contract change (update LCM/CAN
+// maps too).
+static_assert(sizeof(SensorFrame) == 32 + 13 * 8 + 2 * 4 + 8 * 8, "SensorFrame layout changed or gained padding");
 static_assert(alignof(SensorFrame) == 8);
 
 }  // namespace gyrostab::msg

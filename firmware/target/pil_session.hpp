@@ -47,6 +47,7 @@ template <class Controller>
 class PilSession {
  public:
   using Config = typename Controller::Config;
+  static_assert(sizeof(Config) <= link::kMaxConfigBytes, "the configuration does not fit one target frame");
 
   explicit PilSession(const char* image_name) : image_name_(image_name) {}
 

@@ -150,6 +150,7 @@ class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
     if (n & can::kNodeImu) a.push_back("imu");
     if (n & can::kNodeDrive1) a.push_back("drive1");
     if (n & can::kNodeDrive2) a.push_back("drive2");
+    if (n & can::kNodeCluster) a.push_back("cluster");
     return a;
   }
 

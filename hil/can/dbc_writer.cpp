@@ -20,7 +20,8 @@ std::string receivers(const MessageSpec& m) {
   switch (m.requires_node) {
     case kNodeDrive1: return "drive1";
     case kNodeDrive2: return "drive2";
-    default: return "drive1,drive2";
+    case kNodeCluster: return "cluster";
+    default: return "drive1,drive2,cluster";
   }
 }
 

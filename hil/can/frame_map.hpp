@@ -18,6 +18,8 @@
 //   sensor_hub   frame header (tick, times, sequence, status) and the rotor speed pick-off; always present
 //   imu          carrier attitude and rate (ship, monorail car, platform)
 //   drive1/2     one gimbal drive per axis: feedback (angle, rate, winding current, encoder) and command
+//   cluster      the gimbal electronics of a multi-gyro cluster (a CMG cluster's four units): the units'
+//                gimbal angles and rates, and their gimbal rate commands
 //   controller   the firmware: command header (tick, times, status, precession brake); always present
 // A device has the nodes of its hardware (device_nodes, tools/run/can_transport.hpp): a single-gimbal damper
 // has no drive1. The plant refuses to run a device that fills a field of a node it does not have (the value
@@ -62,9 +64,10 @@ enum NodeBit : std::uint8_t {
   kNodeImu = 1u << 0,
   kNodeDrive1 = 1u << 1,
   kNodeDrive2 = 1u << 2,
+  kNodeCluster = 1u << 3,
 };
 using NodeSet = std::uint8_t;
-inline constexpr NodeSet kAllNodes = kNodeImu | kNodeDrive1 | kNodeDrive2;
+inline constexpr NodeSet kAllNodes = kNodeImu | kNodeDrive1 | kNodeDrive2 | kNodeCluster;
 
 struct SignalSpec {
   std::string_view name;      // DBC signal name
@@ -197,6 +200,27 @@ inline constexpr SignalSpec kImuSignals[] = {
 inline constexpr SignalSpec kDrive1FeedbackSignals[] = GYROSTAB_CAN_DRIVE_FEEDBACK(1, msg::kAxis1);
 inline constexpr SignalSpec kDrive2FeedbackSignals[] = GYROSTAB_CAN_DRIVE_FEEDBACK(2, msg::kAxis2);
 
+// A cluster's four units, one double each at bytes 4, 12, 20, 28 (FD length 48: 36 bytes used).
+#define GYROSTAB_CAN_CLUSTER_SIGNAL(field, name, i, lo, hi, unit, what)                                         \
+  SignalSpec {                                                                                                \
+    name #i, static_cast<std::uint16_t>(32 + 64 * ((i) - 1)), 64, SignalKind::kDouble,                        \
+        off<double>(field, (i) - 1), 1, 0, lo, hi, unit, what " of cluster unit " #i                          \
+  }
+#define GYROSTAB_CAN_CLUSTER_FOUR(field, name, lo, hi, unit, what)                                             \
+  GYROSTAB_CAN_ENVELOPE, GYROSTAB_CAN_CLUSTER_SIGNAL(field, name, 1, lo, hi, unit, what),                     \
+      GYROSTAB_CAN_CLUSTER_SIGNAL(field, name, 2, lo, hi, unit, what),                                        \
+      GYROSTAB_CAN_CLUSTER_SIGNAL(field, name, 3, lo, hi, unit, what),                                        \
+      GYROSTAB_CAN_CLUSTER_SIGNAL(field, name, 4, lo, hi, unit, what)
+static_assert(msg::kClusterUnits == 4, "the cluster frames carry four units");
+inline constexpr SignalSpec kClusterAngleSignals[] = {
+    GYROSTAB_CAN_CLUSTER_FOUR(GYROSTAB_CAN_SOFF(cluster_gimbal_angle_rad), "cluster_gimbal_angle_",
+                              kR.cluster_gimbal_angle_rad[0].min, kR.cluster_gimbal_angle_rad[0].max, "rad",
+                              "gimbal angle")};
+inline constexpr SignalSpec kClusterRateSignals[] = {
+    GYROSTAB_CAN_CLUSTER_FOUR(GYROSTAB_CAN_SOFF(cluster_gimbal_rate_rad_s), "cluster_gimbal_rate_",
+                              kR.cluster_gimbal_rate_rad_s[0].min, kR.cluster_gimbal_rate_rad_s[0].max, "rad/s",
+                              "gimbal rate relative to the carrier")};
+
 // Actuator side ----------------------------------------------------------------------------------------------
 // Plausible command ranges: beyond what any shipped device's drive can deliver (the ship damper's precession
 // torque is of the order of 1e6 N m).
@@ -231,6 +255,14 @@ inline constexpr SignalSpec kControllerCommandSignals[] = {
 inline constexpr SignalSpec kDrive1CommandSignals[] = GYROSTAB_CAN_DRIVE_COMMAND(1, msg::kAxis1);
 inline constexpr SignalSpec kDrive2CommandSignals[] = GYROSTAB_CAN_DRIVE_COMMAND(2, msg::kAxis2);
 
+// Beyond any CMG's gimbal rate limit (the shipped scenes' is 1 rad/s).
+inline constexpr double kClusterRateLimit = 1e3;
+inline constexpr SignalSpec kClusterCommandSignals[] = {
+    GYROSTAB_CAN_CLUSTER_FOUR(GYROSTAB_CAN_AOFF(cluster_rate_command_rad_s), "cluster_rate_command_",
+                              -kClusterRateLimit, kClusterRateLimit, "rad/s", "commanded gimbal rate")};
+
+#undef GYROSTAB_CAN_CLUSTER_FOUR
+#undef GYROSTAB_CAN_CLUSTER_SIGNAL
 #undef GYROSTAB_CAN_DRIVE_COMMAND
 #undef GYROSTAB_CAN_DRIVE_FEEDBACK
 #undef GYROSTAB_CAN_ENVELOPE
@@ -246,6 +278,8 @@ inline constexpr MessageSpec kMessages[] = {
      "torque and voltage command to the axis-1 gimbal drive"},
     {0x102, "DRIVE2_CMD", "controller", Direction::kActuator, 20, kNodeDrive2, false, detail::kDrive2CommandSignals,
      "torque and voltage command to the axis-2 gimbal drive"},
+    {0x103, "CLUSTER_CMD", "controller", Direction::kActuator, 48, kNodeCluster, false,
+     detail::kClusterCommandSignals, "gimbal rate commands to the four units of the cluster"},
     {0x080, "CONTROLLER_CMD", "controller", Direction::kActuator, kHeaderLength, 0, true,
      detail::kControllerCommandSignals,
      "command header: tick, times, status (safe state), precession brake, link envelope; completes the tick's "
@@ -254,6 +288,10 @@ inline constexpr MessageSpec kMessages[] = {
      "axis-1 gimbal drive feedback: angle, rate, winding current, encoder"},
     {0x182, "DRIVE2_FB", "drive2", Direction::kSensor, 32, kNodeDrive2, false, detail::kDrive2FeedbackSignals,
      "axis-2 gimbal drive feedback: angle, rate, winding current, encoder"},
+    {0x183, "CLUSTER_ANGLE_FB", "cluster", Direction::kSensor, 48, kNodeCluster, false, detail::kClusterAngleSignals,
+     "gimbal angles of the four units of the cluster"},
+    {0x184, "CLUSTER_RATE_FB", "cluster", Direction::kSensor, 48, kNodeCluster, false, detail::kClusterRateSignals,
+     "gimbal rates of the four units of the cluster"},
     {0x190, "IMU", "imu", Direction::kSensor, 64, kNodeImu, false, detail::kImuSignals,
      "carrier attitude (roll, pitch, yaw) and angular velocity"},
     {0x1A0, "SENSOR_HUB", "sensor_hub", Direction::kSensor, kHeaderLength, 0, true, detail::kSensorHubSignals,
@@ -261,8 +299,8 @@ inline constexpr MessageSpec kMessages[] = {
      "set"},
 };
 inline constexpr std::size_t kMessageCount = sizeof(kMessages) / sizeof(kMessages[0]);
-inline constexpr std::size_t kMaxMessagesPerDirection = 4;
-inline constexpr std::string_view kNodeNames[] = {"sensor_hub", "imu", "drive1", "drive2", "controller"};
+inline constexpr std::size_t kMaxMessagesPerDirection = 6;
+inline constexpr std::string_view kNodeNames[] = {"sensor_hub", "imu", "drive1", "drive2", "cluster", "controller"};
 
 // Index of the message with this identifier in kMessages, or -1. O(kMessageCount).
 constexpr int message_index(std::uint32_t id) {

@@ -13,9 +13,9 @@ namespace {
 // The generated classes hold exactly the wire fields (no pointers, no strings): a field added to a .lcm file
 // without updating kSensorEncodedSize / kActuatorEncodedSize fails here; the unit test compares the constants
 // with the generated getEncodedSize().
-static_assert(sizeof(gyrostab_msg::sensor_frame_t) == 184,
+static_assert(sizeof(gyrostab_msg::sensor_frame_t) == 248,
               "sensor_frame_t changed: update kSensorEncodedSize");
-static_assert(sizeof(gyrostab_msg::actuator_frame_t) == 112,
+static_assert(sizeof(gyrostab_msg::actuator_frame_t) == 144,
               "actuator_frame_t changed: update kActuatorEncodedSize");
 
 template <std::size_t N, class T>
@@ -37,6 +37,8 @@ void to_wire(const msg::SensorFrame& f, std::int64_t sim_time_us, gyrostab_msg::
   copy_array(w.motor_current_A, f.motor_current_A);
   w.rotor_speed_rad_s = f.rotor_speed_rad_s;
   copy_array(w.encoder_count, f.encoder_count);
+  copy_array(w.cluster_gimbal_angle_rad, f.cluster_gimbal_angle_rad);
+  copy_array(w.cluster_gimbal_rate_rad_s, f.cluster_gimbal_rate_rad_s);
   w.sim_time_us = sim_time_us;
 }
 
@@ -53,6 +55,8 @@ void from_wire(const gyrostab_msg::sensor_frame_t& w, msg::SensorFrame& f) {
   copy_array(f.motor_current_A, w.motor_current_A);
   f.rotor_speed_rad_s = w.rotor_speed_rad_s;
   copy_array(f.encoder_count, w.encoder_count);
+  copy_array(f.cluster_gimbal_angle_rad, w.cluster_gimbal_angle_rad);
+  copy_array(f.cluster_gimbal_rate_rad_s, w.cluster_gimbal_rate_rad_s);
 }
 
 void to_wire(const msg::ActuatorFrame& f, std::int64_t sim_time_us, gyrostab_msg::actuator_frame_t& w) {
@@ -64,6 +68,7 @@ void to_wire(const msg::ActuatorFrame& f, std::int64_t sim_time_us, gyrostab_msg
   copy_array(w.gimbal_torque_Nm, f.gimbal_torque_Nm);
   copy_array(w.motor_voltage_V, f.motor_voltage_V);
   w.precession_brake = f.precession_brake;
+  copy_array(w.cluster_rate_command_rad_s, f.cluster_rate_command_rad_s);
   w.sim_time_us = sim_time_us;
 }
 
@@ -76,6 +81,7 @@ void from_wire(const gyrostab_msg::actuator_frame_t& w, msg::ActuatorFrame& f) {
   copy_array(f.gimbal_torque_Nm, w.gimbal_torque_Nm);
   copy_array(f.motor_voltage_V, w.motor_voltage_V);
   f.precession_brake = w.precession_brake;
+  copy_array(f.cluster_rate_command_rad_s, w.cluster_rate_command_rad_s);
 }
 
 template <class Wire>

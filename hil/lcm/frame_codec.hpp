@@ -21,8 +21,8 @@ namespace gyrostab::hil {
 
 // Encoded sizes in bytes, including the 8-byte fingerprint (checked against lcm-gen's getEncodedSize()).
 inline constexpr int kEnvelopeEncodedSize = 4 * 8;                                     // sender .. mac
-inline constexpr int kSensorEncodedSize = 8 + 3 * 8 + 2 * 4 + 13 * 8 + 2 * 4 + 8 + kEnvelopeEncodedSize;  // 192
-inline constexpr int kActuatorEncodedSize = 8 + 3 * 8 + 2 * 4 + 5 * 8 + 8 + kEnvelopeEncodedSize;         // 120
+inline constexpr int kSensorEncodedSize = 8 + 3 * 8 + 2 * 4 + 13 * 8 + 2 * 4 + 8 * 8 + 8 + kEnvelopeEncodedSize;  // 256
+inline constexpr int kActuatorEncodedSize = 8 + 3 * 8 + 2 * 4 + 5 * 8 + 4 * 8 + 8 + kEnvelopeEncodedSize;  // 152
 // The bytes a frame's MAC covers: everything before `session` (the session and the freshness value enter the
 // authenticator's header, the MAC is what it makes).
 constexpr int mac_covered_bytes(int encoded_size) { return encoded_size - 3 * 8; }

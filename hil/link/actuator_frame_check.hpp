@@ -1,8 +1,8 @@
 // The plant side's acceptance test of an ActuatorFrame, independent of the transport (LCM here; the CAN
 // FD transport, hil/can/, reuses it): what a drive checks before it applies a command.
-//   values   every torque, voltage and the brake finite; |torque| ≤ torque limit and |voltage| ≤ voltage
-//   limit
-//            per gimbal axis (the scene's limits, ActuatorLimits); brake in [0, 1];
+//   values   every torque, voltage, cluster rate command and the brake finite; |torque| ≤ torque limit and
+//            |voltage| ≤ voltage limit per gimbal axis, |rate command| ≤ the cluster's rate limit per unit (the
+//            scene's limits, ActuatorLimits); brake in [0, 1];
 //   order    the frame is for the tick the plant expects; its sequence advances from the last accepted one
 //            (serial-number arithmetic, wraps at 2^32); an exact repeat of the last accepted frame is
 //            "repeated", an older tick or a non-advancing sequence "stale", a later tick "ahead".
@@ -36,6 +36,7 @@ struct ActuatorLimits {
                                      std::numeric_limits<double>::infinity()};  // |torque| ≤ this [N m]
   double voltage_V[msg::kGimbalAxes]{std::numeric_limits<double>::infinity(),
                                      std::numeric_limits<double>::infinity()};  // |voltage| ≤ this [V]
+  double cluster_rate_rad_s{std::numeric_limits<double>::infinity()};  // |cluster rate command| ≤ this [rad/s]
   bool from_scene{
       false};  // false: the device gave no limits (only finiteness and the brake range are checked)
 };
@@ -47,11 +48,15 @@ inline ActuatorVerdict check_actuator_values(const msg::ActuatorFrame& f, const 
   for (std::size_t a = 0; a < msg::kGimbalAxes; ++a) {
     finite = finite && std::isfinite(f.gimbal_torque_Nm[a]) && std::isfinite(f.motor_voltage_V[a]);
   }
+  for (std::size_t u = 0; u < msg::kClusterUnits; ++u) finite = finite && std::isfinite(f.cluster_rate_command_rad_s[u]);
   if (!finite) return ActuatorVerdict::kNonFinite;
   if (f.precession_brake < 0.0 || f.precession_brake > 1.0) return ActuatorVerdict::kOutOfRange;
   for (std::size_t a = 0; a < msg::kGimbalAxes; ++a) {
     if (std::fabs(f.gimbal_torque_Nm[a]) > lim.torque_Nm[a]) return ActuatorVerdict::kOutOfRange;
     if (std::fabs(f.motor_voltage_V[a]) > lim.voltage_V[a]) return ActuatorVerdict::kOutOfRange;
+  }
+  for (std::size_t u = 0; u < msg::kClusterUnits; ++u) {
+    if (std::fabs(f.cluster_rate_command_rad_s[u]) > lim.cluster_rate_rad_s) return ActuatorVerdict::kOutOfRange;
   }
   return ActuatorVerdict::kOk;
 }

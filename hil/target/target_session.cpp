@@ -51,6 +51,10 @@ std::string open_target_session(TargetBus& bus, std::uint32_t session, std::uint
            " bytes, this build's " + std::to_string(config.size()) + ": the image is of another version (rebuild it)";
   }
   std::array<std::uint8_t, firmware::link::kMaxConfigBytes> bytes{};
+  if (config.size() > bytes.size()) {
+    return "the " + image + " configuration has " + std::to_string(config.size()) + " bytes, more than a target frame's " +
+           std::to_string(bytes.size());
+  }
   std::memcpy(bytes.data(), config.data(), config.size());
   if (bus.faults.bad_config) {
     // Every Config starts with RuntimeConfig, whose first field is the base tick: 0 must be refused.

@@ -27,7 +27,7 @@
 
 namespace gyrostab::models {
 
-inline constexpr int kMaxCmgs = 4;  // the contract carries four gimbal angles and four rate commands
+inline constexpr int kMaxCmgs = 4;  // the contract's cluster units (msg::kClusterUnits)
 
 struct CmgGeometry {
   int count{0};

@@ -4,11 +4,10 @@
 // sub-steps. Sensors: the attitude as 3-2-1 angles (star tracker, exact), the body rate (gyro package: white
 // noise density), the gimbal angles from absolute single-turn encoders (read in [−π, π)).
 //
-// Contract slots (firmware/app/cmg_cluster_controller.hpp says why): SensorFrame carrier_angle_rad = (roll,
-// pitch, yaw) of q_WB [rad]; carrier_rate_rad_s = ω [rad/s]; gimbal_angle_rad[kAxis1, kAxis2] = δ_1, δ_2 and
-// gimbal_rate_rad_s[kAxis1, kAxis2] = δ_3, δ_4 [rad]. ActuatorFrame gimbal_torque_Nm[kAxis1, kAxis2] = ν_c,1,
-// ν_c,2 and motor_voltage_V[kAxis1, kAxis2] = ν_c,3, ν_c,4 [rad/s]; precession_brake is ignored (the safe
-// state's zero rates hold the gimbals).
+// Signals: SensorFrame carrier_angle_rad = (roll, pitch, yaw) of q_WB [rad]; carrier_rate_rad_s = ω [rad/s];
+// cluster_gimbal_angle_rad[i] = δ_i [rad] (encoder); cluster_gimbal_rate_rad_s[i] = δ_i' [rad/s] (the rate
+// loop's feedback, exact). ActuatorFrame cluster_rate_command_rad_s[i] = ν_c,i [rad/s]; precession_brake is
+// ignored (the safe state's zero rates hold the gimbals). Units beyond the cluster's count read 0.
 // Random streams of the scene seed (seeded_rng.hpp): 1 the body-rate noise.
 // Allocation-free after construction. Docs: docs/models/cmg-cluster.md. Oracle: tests/oracle/cmg_cluster_test.cpp.
 #pragma once
@@ -80,19 +79,16 @@ class CmgClusterPlant {
       f.carrier_angle_rad[k] = e[k];
       f.carrier_rate_rad_s[k] = x_[Model::kOmega + k] + rate_noise_.sample(rng_rate_);
     }
-    f.gimbal_angle_rad[msg::kAxis1] = gimbal_reading(0);
-    f.gimbal_angle_rad[msg::kAxis2] = gimbal_reading(1);
-    f.gimbal_rate_rad_s[msg::kAxis1] = gimbal_reading(2);
-    f.gimbal_rate_rad_s[msg::kAxis2] = gimbal_reading(3);
+    for (int i = 0; i < static_cast<int>(msg::kClusterUnits); ++i) {
+      const bool unit = i < p_.model.geometry.count;
+      f.cluster_gimbal_angle_rad[i] = unit ? gimbal_reading(i) : 0.0;
+      f.cluster_gimbal_rate_rad_s[i] = unit ? x_[Model::kGimbalRate + i] : 0.0;
+    }
   }
 
   void actuate(const msg::ActuatorFrame& cmd) {
     double* nu = model_.inputs.rate_command;
-    nu[0] = cmd.gimbal_torque_Nm[msg::kAxis1];
-    nu[1] = cmd.gimbal_torque_Nm[msg::kAxis2];
-    nu[2] = cmd.motor_voltage_V[msg::kAxis1];
-    nu[3] = cmd.motor_voltage_V[msg::kAxis2];
-    for (int i = p_.model.geometry.count; i < models::kMaxCmgs; ++i) nu[i] = 0.0;
+    for (int i = 0; i < models::kMaxCmgs; ++i) nu[i] = i < p_.model.geometry.count ? cmd.cluster_rate_command_rad_s[i] : 0.0;
   }
 
   // Integrates [k, k + 1).

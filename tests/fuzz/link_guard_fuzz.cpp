@@ -71,11 +71,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   hil::FrameEndpoint<hil::MemoryTransport> controller(controller_side,
                                                       hil::controller_guard(kControllerId, 0, key));
   bool plant_bound = false, controller_bound = false;
-  // Datagrams: a length byte (its low bit picks the direction), then that many bytes; the frame sizes are the
-  // lengths 120 and 192, reached as 120 = 2·60 and 192 = 2·96 (the direction bit is the length's low bit).
+  // Datagrams: a length byte (its low bit picks the direction, the rest n gives the length 2n + 2, 2 to 256),
+  // then that many bytes; the frame sizes 152 and 256 are n = 75 and n = 127.
   std::size_t i = 1;
   while (i < size) {
-    const int len = data[i] & 0xFE;
+    const int len = 2 * (data[i] >> 1) + 2;
     const bool to_plant = (data[i] & 1) != 0;
     ++i;
     const int n = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(len), size - i));

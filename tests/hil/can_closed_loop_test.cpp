@@ -95,6 +95,26 @@ TEST(CanClosedLoop, EveryShippedSceneIsBitIdenticalToInProcessOrRefusedForBusLoa
   EXPECT_GT(identical, 0);
 }
 
+// The CMG cluster on its own node: the four units' gimbal angles and rates in CLUSTER_ANGLE_FB and
+// CLUSTER_RATE_FB, their rate commands in CLUSTER_CMD (docs/can.md). At 1 kHz that is 91.7 % of a 1/5 Mbit/s
+// bus (refused above), 64.7 % with an 8 Mbit/s data phase.
+TEST(CanClosedLoop, CmgClusterOverItsClusterNodeWithAnEightMegabitDataPhase) {
+  TempDir d;
+  const std::string path = scene("cmg-cluster-singularity-robust.toml");
+  const Exit e = run({gyrostab_bin(), "run", path, "--transport", "can", "--can-if", can_if(), "--can-data-bitrate",
+                      "8e6", "--ticks", "2000", "--no-progress", "--out", d / "can"});
+  ASSERT_EQ(e.code, 0);
+  const Exit i = run({gyrostab_bin(), "run", path, "--ticks", "2000", "--no-progress", "--out", d / "inproc"});
+  ASSERT_EQ(i.code, 0);
+  const Outputs a = outputs_of(d / "inproc"), b = outputs_of(d / "can");
+  EXPECT_EQ(a.figures, b.figures);
+  EXPECT_TRUE(a.csv == b.csv) << "signals.csv differs";
+  const nlohmann::json r = read_json(d / "can/report.json");
+  EXPECT_NEAR(r["link"]["can"]["bus_load"]["load"].get<double>(), 0.64725, 1e-9);
+  EXPECT_EQ(r["link"]["can"]["bus_load"]["frames_per_tick"], 6) << r["link"]["can"].dump();
+  EXPECT_EQ(r["link"]["can"]["nodes"], nlohmann::json::array({"sensor_hub", "controller", "imu", "cluster"}));
+}
+
 TEST(CanClosedLoop, PlantAndControllerStartedByHandInEitherOrder) {
   TempDir d;
   const std::string path = scene("servo-gyro.toml");

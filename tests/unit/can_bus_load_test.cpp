@@ -55,8 +55,16 @@ TEST(CanBusLoad, ShippedDeviceSetsAtOneKilohertz) {
   EXPECT_NEAR(two_axis.load, 0.7088, 1e-9);
   EXPECT_FALSE(two_axis.acceptable());
   EXPECT_NEAR(bus_load(kNodeDrive1 | kNodeDrive2, 1000.0, BusTiming{1e6, 8e6}).load, 0.51725, 1e-9);
-  // Every node: 168.8 + 2·104.8 + 168.8 + 168.8 + 2·80.8 = 877.6 us — refused at 1 kHz on a 1/5 Mbit/s bus.
-  EXPECT_NEAR(bus_load(kAllNodes, 1000.0, t).load, 0.8776, 1e-9);
+  // The CMG cluster (IMU, the cluster's two feedback frames and its command frame of 48 B): 3·168.8 + 3·136.8 =
+  // 916.8 us, refused at 1 kHz on a 1/5 Mbit/s bus; with an 8 Mbit/s data phase 3·(33 + 679/8) + 3·(33 + 519/8)
+  // = 647.25 us.
+  const BusLoad cluster = bus_load(kNodeImu | kNodeCluster, 1000.0, t);
+  EXPECT_EQ(cluster.frames_per_tick, 6);
+  EXPECT_NEAR(cluster.load, 0.9168, 1e-9);
+  EXPECT_FALSE(cluster.acceptable());
+  EXPECT_NEAR(bus_load(kNodeImu | kNodeCluster, 1000.0, BusTiming{1e6, 8e6}).load, 0.64725, 1e-9);
+  // Every node: 877.6 us + the cluster's 3·136.8 = 1288.0 us — refused at 1 kHz on a 1/5 Mbit/s bus.
+  EXPECT_NEAR(bus_load(kAllNodes, 1000.0, t).load, 1.2880, 1e-9);
   EXPECT_FALSE(bus_load(kAllNodes, 1000.0, t).acceptable());
   // The 10 kHz current-loop scene: far beyond any CAN bus.
   EXPECT_GT(bus_load(kNodeDrive1 | kNodeDrive2, 10000.0, t).load, 6.0);

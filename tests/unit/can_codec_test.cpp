@@ -38,6 +38,8 @@ SensorFrame sample_sensor(std::uint64_t tick, random::SeededRng& rng) {
   f.rotor_speed_rad_s = 600.0 + rng.uniform();
   f.encoder_count[0] = -123456;
   f.encoder_count[1] = static_cast<std::int32_t>(tick);
+  for (double& v : f.cluster_gimbal_angle_rad) v = 6.0 * (rng.uniform() - 0.5);
+  for (double& v : f.cluster_gimbal_rate_rad_s) v = rng.uniform() - 0.5;
   return f;
 }
 
@@ -53,6 +55,10 @@ ActuatorFrame sample_actuator(std::uint64_t tick) {
   a.motor_voltage_V[0] = 12.5;
   a.motor_voltage_V[1] = -std::numeric_limits<double>::denorm_min();
   a.precession_brake = 1.0;
+  a.cluster_rate_command_rad_s[0] = -0.0;
+  a.cluster_rate_command_rad_s[1] = 0.25;
+  a.cluster_rate_command_rad_s[2] = -1.0 / 3.0;
+  a.cluster_rate_command_rad_s[3] = std::numeric_limits<double>::denorm_min();
   return a;
 }
 
@@ -72,6 +78,10 @@ TEST(CanCodec, SensorFramesCrossBitForBitForEveryNodeSet) {
         if ((nodes & (a == 0 ? kNodeDrive1 : kNodeDrive2)) != 0) continue;
         f.gimbal_angle_rad[a] = f.gimbal_rate_rad_s[a] = f.motor_current_A[a] = 0.0;
         f.encoder_count[a] = 0;
+      }
+      if ((nodes & kNodeCluster) == 0) {
+        for (double& v : f.cluster_gimbal_angle_rad) v = 0.0;
+        for (double& v : f.cluster_gimbal_rate_rad_s) v = 0.0;
       }
       const std::size_t n = enc.encode(f, frames);
       ASSERT_EQ(n, enc.frames_per_set());
@@ -95,13 +105,14 @@ TEST(CanCodec, ActuatorFramesCrossBitForBitIncludingNegativeZeroAndDenormals) {
   for (std::uint64_t tick = 0; tick < 20; ++tick) {
     const ActuatorFrame a = sample_actuator(tick);
     const std::size_t n = enc.encode(a, frames);
-    ASSERT_EQ(n, 3u);
+    ASSERT_EQ(n, 4u);
     EXPECT_TRUE(frames[n - 1].id == 0x080) << "the header goes last";
     for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(rx.accept(frames[i]), FrameError::kNone);
     ActuatorFrame out{};
     ASSERT_TRUE(rx.take(out));
     EXPECT_TRUE(same_bits(out, a));
     EXPECT_TRUE(std::signbit(out.gimbal_torque_Nm[0]));
+    EXPECT_TRUE(std::signbit(out.cluster_rate_command_rad_s[0]));
   }
 }
 
@@ -155,7 +166,7 @@ class CanBadFrames : public ::testing::Test {
 };
 
 TEST_F(CanBadFrames, EachCauseIsRejectedAndCountedAndTheSetStillCompletes) {
-  ASSERT_EQ(make_set(0), 4u);
+  ASSERT_EQ(make_set(0), 6u);
   CanFrame bad = frames_[0];  // DRIVE1_FB
   struct Case {
     FrameError want;
@@ -186,7 +197,7 @@ TEST_F(CanBadFrames, EachCauseIsRejectedAndCountedAndTheSetStillCompletes) {
   resign(r);
   EXPECT_EQ(feed(r), FrameError::kReservedBits);
   // Padding: DRIVE1_FB uses all its 32 bytes, the IMU frame 52 of its 64.
-  CanFrame imu = frames_[2];
+  CanFrame imu = frames_[4];
   ASSERT_EQ(imu.id, 0x190u);
   imu.data[60] = 0xAA;  // padding after byte 52
   resign(imu);
@@ -217,19 +228,19 @@ TEST_F(CanBadFrames, RepeatedCounterIsStaleAndSkippedCounterResynchronises) {
   make_set(1);
   make_set(2);  // tick 1's frames are lost: tick 2's counters are two ahead
   EXPECT_EQ(feed(frames_[0]), FrameError::kCounterSkipped);
-  for (std::size_t i = 1; i < 4; ++i) EXPECT_EQ(feed(frames_[i]), FrameError::kCounterSkipped);
+  for (std::size_t i = 1; i < 6; ++i) EXPECT_EQ(feed(frames_[i]), FrameError::kCounterSkipped);
   EXPECT_FALSE(rx_.ready()) << "tick 2's set was rejected frame by frame";
   make_set(3);  // resynchronised: the next frames in sequence are accepted again
   for (const CanFrame& c : frames_) ASSERT_EQ(feed(c), FrameError::kNone);
   ASSERT_TRUE(rx_.take(out));
   EXPECT_EQ(out.tick, 3u);
   EXPECT_EQ(rx_.counters().count(FrameError::kCounterRepeated), 1u);
-  EXPECT_EQ(rx_.counters().count(FrameError::kCounterSkipped), 4u);
+  EXPECT_EQ(rx_.counters().count(FrameError::kCounterSkipped), 6u);
 }
 
 TEST_F(CanBadFrames, HeaderTickMustMatchItsTag) {
   make_set(5);
-  CanFrame h = frames_[3];
+  CanFrame h = frames_[5];
   ASSERT_EQ(h.id, 0x1A0u);
   h.data[2] ^= 0x01;  // tag says tick 4
   resign(h);

@@ -120,7 +120,8 @@ TEST(CanDbc, ParsesBackToTheFrameMap) {
       EXPECT_EQ(ds.receivers, m.direction == Direction::kSensor ? "controller"
                               : m.requires_node == kNodeDrive1  ? "drive1"
                               : m.requires_node == kNodeDrive2  ? "drive2"
-                                                                : "drive1,drive2")
+                              : m.requires_node == kNodeCluster ? "cluster"
+                                                                : "drive1,drive2,cluster")
           << s.name;
     }
   }
@@ -176,6 +177,8 @@ TEST(CanDbc, CanmatrixDecodesEncoderOutputExactly) {
   s.rotor_speed_rad_s = 6283.185307179586;
   s.encoder_count[0] = -2147483647 - 1;
   s.encoder_count[1] = 2147483647;
+  s.cluster_gimbal_angle_rad[2] = -3.0;
+  s.cluster_gimbal_rate_rad_s[3] = 0.5;
   msg::ActuatorFrame a{};
   a.tick = 77;
   a.time_ns = 77'000'000;
@@ -186,13 +189,14 @@ TEST(CanDbc, CanmatrixDecodesEncoderOutputExactly) {
   a.gimbal_torque_Nm[1] = -2.0;
   a.motor_voltage_V[0] = 24.0;
   a.precession_brake = 1.0;
+  a.cluster_rate_command_rad_s[1] = -0.75;
 
   std::vector<CanFrame> frames(2 * kMaxMessagesPerDirection);
   FrameEncoder se(Direction::kSensor, kAllNodes), ae(Direction::kActuator, kAllNodes);
   std::size_t n = se.encode(s, std::span<CanFrame>(frames.data(), kMaxMessagesPerDirection));
   n += ae.encode(a, std::span<CanFrame>(frames.data() + n, kMaxMessagesPerDirection));
   frames.resize(n);
-  ASSERT_EQ(n, 7u);
+  ASSERT_EQ(n, 10u);
   {
     CandumpWriter w;
     std::string error;

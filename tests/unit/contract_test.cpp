@@ -37,7 +37,7 @@ TEST(Contract, FramesAreTriviallyCopyableStandardLayoutAggregates) {
 }
 
 TEST(Contract, SensorFrameHasTheWireLayout) {
-  EXPECT_EQ(sizeof(SensorFrame), 144u);
+  EXPECT_EQ(sizeof(SensorFrame), 208u);
   EXPECT_EQ(alignof(SensorFrame), 8u);
   EXPECT_EQ(offsetof(SensorFrame, tick), 0u);
   EXPECT_EQ(offsetof(SensorFrame, time_ns), 8u);
@@ -51,10 +51,12 @@ TEST(Contract, SensorFrameHasTheWireLayout) {
   EXPECT_EQ(offsetof(SensorFrame, motor_current_A), 112u);
   EXPECT_EQ(offsetof(SensorFrame, rotor_speed_rad_s), 128u);
   EXPECT_EQ(offsetof(SensorFrame, encoder_count), 136u);
+  EXPECT_EQ(offsetof(SensorFrame, cluster_gimbal_angle_rad), 144u);
+  EXPECT_EQ(offsetof(SensorFrame, cluster_gimbal_rate_rad_s), 176u);
 }
 
 TEST(Contract, ActuatorFrameHasTheWireLayout) {
-  EXPECT_EQ(sizeof(ActuatorFrame), 72u);
+  EXPECT_EQ(sizeof(ActuatorFrame), 104u);
   EXPECT_EQ(alignof(ActuatorFrame), 8u);
   EXPECT_EQ(offsetof(ActuatorFrame, tick), 0u);
   EXPECT_EQ(offsetof(ActuatorFrame, time_ns), 8u);
@@ -64,6 +66,7 @@ TEST(Contract, ActuatorFrameHasTheWireLayout) {
   EXPECT_EQ(offsetof(ActuatorFrame, gimbal_torque_Nm), 32u);
   EXPECT_EQ(offsetof(ActuatorFrame, motor_voltage_V), 48u);
   EXPECT_EQ(offsetof(ActuatorFrame, precession_brake), 64u);
+  EXPECT_EQ(offsetof(ActuatorFrame, cluster_rate_command_rad_s), 72u);
 }
 
 // No padding: the members' sizes add up to the struct's, so every byte on the wire is a field (logs of the
@@ -74,12 +77,14 @@ TEST(Contract, FramesHaveNoPadding) {
                                      sizeof s.sequence + sizeof s.status + sizeof s.carrier_angle_rad +
                                      sizeof s.carrier_rate_rad_s + sizeof s.gimbal_angle_rad +
                                      sizeof s.gimbal_rate_rad_s + sizeof s.motor_current_A +
-                                     sizeof s.rotor_speed_rad_s + sizeof s.encoder_count;
+                                     sizeof s.rotor_speed_rad_s + sizeof s.encoder_count +
+                                     sizeof s.cluster_gimbal_angle_rad + sizeof s.cluster_gimbal_rate_rad_s;
   EXPECT_EQ(sensor_members, sizeof(SensorFrame));
   const ActuatorFrame a{};
   const std::size_t actuator_members = sizeof a.tick + sizeof a.time_ns + sizeof a.sensor_tick +
                                        sizeof a.sequence + sizeof a.status + sizeof a.gimbal_torque_Nm +
-                                       sizeof a.motor_voltage_V + sizeof a.precession_brake;
+                                       sizeof a.motor_voltage_V + sizeof a.precession_brake +
+                                       sizeof a.cluster_rate_command_rad_s;
   EXPECT_EQ(actuator_members, sizeof(ActuatorFrame));
 }
 

@@ -85,7 +85,9 @@ TickResult tick_good(FaultMonitor& m, std::uint64_t k) {
 
 bool is_safe_command(const ActuatorFrame& c) {
   return c.gimbal_torque_Nm[0] == 0.0 && c.gimbal_torque_Nm[1] == 0.0 && c.motor_voltage_V[0] == 0.0 &&
-         c.motor_voltage_V[1] == 0.0 && c.precession_brake == 1.0 && msg::has(c.status, FaultBit::kSafeState);
+         c.motor_voltage_V[1] == 0.0 && c.precession_brake == 1.0 && c.cluster_rate_command_rad_s[0] == 0.0 &&
+         c.cluster_rate_command_rad_s[1] == 0.0 && c.cluster_rate_command_rad_s[2] == 0.0 &&
+         c.cluster_rate_command_rad_s[3] == 0.0 && msg::has(c.status, FaultBit::kSafeState);
 }
 
 // Writes `value` into one signal of a frame (the test's own map, independent of for_each_signal).
@@ -135,6 +137,18 @@ void set_signal(SensorFrame& f, SensorSignal s, double value) {
       break;
     case SensorSignal::kEncoderCount2:
       f.encoder_count[1] = static_cast<std::int32_t>(value);
+      break;
+    case SensorSignal::kClusterAngle1:
+    case SensorSignal::kClusterAngle2:
+    case SensorSignal::kClusterAngle3:
+    case SensorSignal::kClusterAngle4:
+      f.cluster_gimbal_angle_rad[static_cast<int>(s) - static_cast<int>(SensorSignal::kClusterAngle1)] = value;
+      break;
+    case SensorSignal::kClusterRate1:
+    case SensorSignal::kClusterRate2:
+    case SensorSignal::kClusterRate3:
+    case SensorSignal::kClusterRate4:
+      f.cluster_gimbal_rate_rad_s[static_cast<int>(s) - static_cast<int>(SensorSignal::kClusterRate1)] = value;
       break;
     case SensorSignal::kNone:
       break;

@@ -73,8 +73,8 @@ bool same_bytes(const T& a, const T& b) {
 TEST(LcmCodec, EncodedSizesMatchTheGeneratedTypesAndFitOneDatagram) {
   EXPECT_EQ(kSensorEncodedSize, gyrostab_msg::sensor_frame_t{}.getEncodedSize());
   EXPECT_EQ(kActuatorEncodedSize, gyrostab_msg::actuator_frame_t{}.getEncodedSize());
-  EXPECT_EQ(kSensorEncodedSize, 192);
-  EXPECT_EQ(kActuatorEncodedSize, 120);
+  EXPECT_EQ(kSensorEncodedSize, 256);
+  EXPECT_EQ(kActuatorEncodedSize, 152);
   // LCM fragments messages whose channel name + payload exceed one ~1400-byte datagram.
   EXPECT_LT(kSensorEncodedSize, 1400);
   EXPECT_LT(kActuatorEncodedSize, 1400);

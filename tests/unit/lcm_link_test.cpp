@@ -40,14 +40,16 @@ TEST(ActuatorFrameCheck, EveryNonFiniteFieldAndEveryLimitIsRefused) {
   hil::ActuatorLimits lim;
   lim.torque_Nm[0] = lim.torque_Nm[1] = 10.0;
   lim.voltage_V[0] = lim.voltage_V[1] = 24.0;
+  lim.cluster_rate_rad_s = 1.0;
   EXPECT_EQ(hil::check_actuator_values(command(0, 10.0), lim), hil::ActuatorVerdict::kOk)
       << "the limit itself is allowed";
   EXPECT_EQ(hil::check_actuator_values(command(0, -10.0), lim), hil::ActuatorVerdict::kOk);
-  for (int field = 0; field < 5; ++field) {
+  for (int field = 0; field < 9; ++field) {
     for (const double bad : {kNaN, kInf, -kInf}) {
       msg::ActuatorFrame a = command(0);
-      double* f[5] = {&a.gimbal_torque_Nm[0], &a.gimbal_torque_Nm[1], &a.motor_voltage_V[0],
-                      &a.motor_voltage_V[1], &a.precession_brake};
+      double* f[9] = {&a.gimbal_torque_Nm[0],           &a.gimbal_torque_Nm[1],           &a.motor_voltage_V[0],
+                      &a.motor_voltage_V[1],            &a.precession_brake,              &a.cluster_rate_command_rad_s[0],
+                      &a.cluster_rate_command_rad_s[1], &a.cluster_rate_command_rad_s[2], &a.cluster_rate_command_rad_s[3]};
       *f[field] = bad;
       EXPECT_EQ(hil::check_actuator_values(a, lim), hil::ActuatorVerdict::kNonFinite) << field;
     }
@@ -57,6 +59,13 @@ TEST(ActuatorFrameCheck, EveryNonFiniteFieldAndEveryLimitIsRefused) {
   a = command(0);
   a.motor_voltage_V[0] = -24.5;
   EXPECT_EQ(hil::check_actuator_values(a, lim), hil::ActuatorVerdict::kOutOfRange);
+  for (std::size_t u = 0; u < msg::kClusterUnits; ++u) {
+    a = command(0);
+    a.cluster_rate_command_rad_s[u] = -1.0;
+    EXPECT_EQ(hil::check_actuator_values(a, lim), hil::ActuatorVerdict::kOk) << "the limit itself, unit " << u;
+    a.cluster_rate_command_rad_s[u] = std::nextafter(-1.0, -2.0);
+    EXPECT_EQ(hil::check_actuator_values(a, lim), hil::ActuatorVerdict::kOutOfRange) << "unit " << u;
+  }
   for (const double brake : {-0.01, 1.01}) {
     a = command(0);
     a.precession_brake = brake;

@@ -17,6 +17,13 @@ namespace {
 bool recorded_envelope(const hil::LinkEnvelope& e) {
   return e.sender == 0 && e.session == 0 && e.freshness == 0 && e.mac == 0;
 }
+// A frame of another size or fingerprint is most likely from a build with another contract (the frames grew
+// when the cluster fields were added): say so, with both sizes.
+std::string other_contract(hil::DecodeError e, std::int64_t size, int expected) {
+  if (e != hil::DecodeError::kWrongSize && e != hil::DecodeError::kWrongFingerprint) return {};
+  return " (" + std::to_string(size) + " bytes, this build's " + std::to_string(expected) +
+         ": a log of a build with another contract version, or a corrupt one)";
+}
 }  // namespace
 
 namespace {
@@ -268,7 +275,8 @@ ReadStatus BusLogReader::next(TickRecord& out) {
   hil::DecodeError de = hil::decode(s.ev->data, s.ev->datalen, r.sensor, &t_us, &env);
   if (de != hil::DecodeError::kOk) {
     return fail(ReadStatus::kCorrupt, s.offset,
-                "the sensor frame of " + tick_name() + " does not decode: " + hil::describe(de));
+                "the sensor frame of " + tick_name() + " does not decode: " + hil::describe(de) +
+                    other_contract(de, s.ev->datalen, hil::kSensorEncodedSize));
   }
   if (!recorded_envelope(env)) {
     return fail(ReadStatus::kCorrupt, s.offset,
@@ -291,7 +299,8 @@ ReadStatus BusLogReader::next(TickRecord& out) {
   de = hil::decode(a.ev->data, a.ev->datalen, r.actuator, &t_us, &env);
   if (de != hil::DecodeError::kOk) {
     return fail(ReadStatus::kCorrupt, a.offset,
-                "the actuator frame of " + tick_name() + " does not decode: " + hil::describe(de));
+                "the actuator frame of " + tick_name() + " does not decode: " + hil::describe(de) +
+                    other_contract(de, a.ev->datalen, hil::kActuatorEncodedSize));
   }
   if (!recorded_envelope(env)) {
     return fail(ReadStatus::kCorrupt, a.offset,

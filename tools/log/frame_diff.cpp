@@ -56,6 +56,7 @@ std::string frame_differences(const msg::ActuatorFrame& r, const msg::ActuatorFr
   d.array("gimbal_torque_Nm", r.gimbal_torque_Nm, p.gimbal_torque_Nm);
   d.array("motor_voltage_V", r.motor_voltage_V, p.motor_voltage_V);
   d.field("precession_brake", r.precession_brake, p.precession_brake);
+  d.array("cluster_rate_command_rad_s", r.cluster_rate_command_rad_s, p.cluster_rate_command_rad_s);
   return d.text().empty() ? std::string("bytes differ outside the named fields") : d.text();
 }
 
@@ -74,6 +75,8 @@ std::string frame_differences(const msg::SensorFrame& r, const msg::SensorFrame&
   d.array("motor_current_A", r.motor_current_A, p.motor_current_A);
   d.field("rotor_speed_rad_s", r.rotor_speed_rad_s, p.rotor_speed_rad_s);
   d.array("encoder_count", r.encoder_count, p.encoder_count);
+  d.array("cluster_gimbal_angle_rad", r.cluster_gimbal_angle_rad, p.cluster_gimbal_angle_rad);
+  d.array("cluster_gimbal_rate_rad_s", r.cluster_gimbal_rate_rad_s, p.cluster_gimbal_rate_rad_s);
   return d.text().empty() ? std::string("bytes differ outside the named fields") : d.text();
 }
 

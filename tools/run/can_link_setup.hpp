@@ -33,6 +33,7 @@ inline std::string node_list(can::NodeSet n) {
   if (n & can::kNodeImu) s += ", imu";
   if (n & can::kNodeDrive1) s += ", drive1";
   if (n & can::kNodeDrive2) s += ", drive2";
+  if (n & can::kNodeCluster) s += ", cluster";
   return s;
 }
 

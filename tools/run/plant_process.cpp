@@ -258,6 +258,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   l["actuator_limits"] = limits.from_scene
                              ? nlohmann::json{{"torque_Nm", {limits.torque_Nm[0], limits.torque_Nm[1]}},
                                               {"voltage_V", {limits.voltage_V[0], limits.voltage_V[1]}},
+                                              {"cluster_rate_rad_s", limits.cluster_rate_rad_s},
                                               {"brake", {0.0, 1.0}}}
                              : nlohmann::json("finite values and brake in [0, 1] only (the device states no limits)");
   l["drive_watchdog"] = {{"zero_torque_ticks", link.watchdog_ticks}, {"first_tick", link.first_watchdog_tick}};

@@ -13,8 +13,8 @@ extern const DeviceDescriptor kCmgCluster{
         "electronics; the firmware (firmware/app/cmg_cluster_controller.hpp) closes the attitude loop by "
         "quaternion error feedback u = −K_p q_e,vec sign(q_e,0) − K_d ω + ω × H and steers the gimbals by ν = "
         "−A⁺u with the pseudo-inverse, the singularity-robust inverse or the generalized singularity-robust "
-        "inverse (Wie's deterministic off-diagonal dither, timed by the tick). Four gimbal angles and four rate "
-        "commands ride in the contract's two gimbal slots of each kind (the controller's header has the map). "
+        "inverse (Wie's deterministic off-diagonal dither, timed by the tick). The four units' gimbal angles, rates "
+        "and rate commands travel in the contract's cluster fields (CAN: the `cluster` node). "
         "Shipped: `sim/scenes/cmg-cluster-slew.toml` (30° rest-to-rest about x), "
         "`sim/scenes/cmg-cluster-singularity-pseudo-inverse.toml` and "
         "`sim/scenes/cmg-cluster-singularity-robust.toml` (a 60° slew about x whose momentum demand crosses the "
@@ -43,7 +43,7 @@ extern const DeviceDescriptor kCmgCluster{
         "`max_gimbal_rate_rad_s`, `settle_band_deg`, `near_singular_measure`.",
     .read = read_cmg_cluster,
     .doc = cmg_cluster_doc,
-    .can_nodes = can::kAllNodes,
+    .can_nodes = can::kNodeImu | can::kNodeCluster,  // star tracker and gyro package; the CMG electronics
 };
 
 }  // namespace gyrostab::tools

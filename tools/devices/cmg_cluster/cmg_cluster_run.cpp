@@ -278,12 +278,12 @@ struct CmgClusterTraits {
   using Binding = CmgClusterRun;
   using Controller = tools::Controller;
   static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
-  // The gimbal rate commands ride in the torque and voltage slots: their limit is the steering's rate limit.
+  // The gimbal rate commands' limit is the steering's rate limit; the two gimbal drives' slots carry nothing.
   static hil::ActuatorLimits actuator_limits(const Scene& s) {
     hil::ActuatorLimits l;
-    const double r = s.controller.steering.max_rate * (1.0 + 1e-9);
-    l.torque_Nm[0] = l.torque_Nm[1] = r;
-    l.voltage_V[0] = l.voltage_V[1] = r;
+    l.torque_Nm[0] = l.torque_Nm[1] = 0.0;
+    l.voltage_V[0] = l.voltage_V[1] = 0.0;
+    l.cluster_rate_rad_s = s.controller.steering.max_rate * (1.0 + 1e-9);
     l.from_scene = true;
     return l;
   }

@@ -65,14 +65,11 @@ CmgClusterSampled cmg_cluster_sampled(const CmgClusterScene& s, const plants::Cm
       d[i] = i < count ? x[Model::kDelta + i] : 0.0;
       d[i] = std::remainder(d[i], 2.0 * std::numbers::pi);
     }
-    f.gimbal_angle_rad[msg::kAxis1] = d[0];
-    f.gimbal_angle_rad[msg::kAxis2] = d[1];
-    f.gimbal_rate_rad_s[msg::kAxis1] = d[2];
-    f.gimbal_rate_rad_s[msg::kAxis2] = d[3];
+    for (int i = 0; i < 4; ++i) f.cluster_gimbal_angle_rad[i] = d[i];
     msg::ActuatorFrame cmd{};
     law.control(f, cmd);
-    return Eigen::Vector4d(cmd.gimbal_torque_Nm[msg::kAxis1], cmd.gimbal_torque_Nm[msg::kAxis2],
-                           cmd.motor_voltage_V[msg::kAxis1], cmd.motor_voltage_V[msg::kAxis2]);
+    return Eigen::Vector4d(cmd.cluster_rate_command_rad_s[0], cmd.cluster_rate_command_rad_s[1],
+                           cmd.cluster_rate_command_rad_s[2], cmd.cluster_rate_command_rad_s[3]);
   };
   // ξ' at ξ under the held rate commands u: the model's derivative, the quaternion's through φ's Jacobian.
   const auto rate = [&](const Local& xi, const Eigen::Vector4d& u) {

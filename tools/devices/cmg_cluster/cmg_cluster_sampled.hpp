@@ -3,7 +3,7 @@
 // rotors' gyroscopic load) linearised where the run ends, in 18 local coordinates (the attitude as a small
 // rotation φ from there), by central differences of its own derivative; the firmware's law (quaternion
 // feedback and steering, firmware/app/cmg_cluster_controller.hpp) probed through the sensor frame the plant
-// fills (3-2-1 angles, body rates, gimbal angles in the contract's slots), its rate limit lifted; sampled with
+// fills (3-2-1 angles, body rates, the cluster's gimbal angles), its rate limit lifted; sampled with
 // the zero-order hold at the law's period and the latency (sim/analysis/sampled_loop_roots.hpp). The attitude
 // mode about the slew axis k is the pair nearest the design's J_kk s² + K_d s + K_p/2 (ω_a, ζ of the scene:
 // a double root at ζ = 1), given as ω_n = √(s1 s2) and ζ = −(s1 + s2)/(2 ω_n) — a double root's own position
