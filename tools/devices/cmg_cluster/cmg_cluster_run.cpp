@@ -56,7 +56,7 @@ class CmgClusterRun {
 
   void sense(std::int64_t tick, msg::SensorFrame& f) {
     plant_.sense(tick, f);
-    // The run about the slew axis, tick by tick: q_k, ω_k and the body-rate errors the law read (the noise's
+    // The approach, tick by tick: q, ω and the body-rate errors the law read (the noise's
     // response is simulated from the start: what the noise did before the final approach is still in it); the
     // fit uses the ticks from the first whose error is below kLinearBelowRad.
     if (axis_ < 0 || approach_.size() >= approach_.capacity()) return;
@@ -66,7 +66,8 @@ class CmgClusterRun {
     }
     const dynamics::Quat e = reference_.conjugate() * plant_.attitude();
     const dynamics::Vec3 w = plant_.body_rate();
-    approach_.push_back({(e.w() < 0.0 ? -1.0 : 1.0) * e.vec()[axis_], w[axis_],
+    const double sign = e.w() < 0.0 ? -1.0 : 1.0;
+    approach_.push_back({{sign * e.vec()[0], sign * e.vec()[1], sign * e.vec()[2], w[0], w[1], w[2]},
                          {f.carrier_rate_rad_s[0] - w[0], f.carrier_rate_rad_s[1] - w[1], f.carrier_rate_rad_s[2] - w[2]}});
   }
   void actuate(const msg::ActuatorFrame& cmd) {
@@ -167,15 +168,17 @@ class CmgClusterRun {
   }
 
  private:
-  // 0.5°: the approach's own non-linearity (the gimbals turn, the steering's Jacobian with them) shifts the
-  // fitted ω_n by −2.1e-3 from 2°, −8.4e-4 from 1°, −3.1e-4 from 0.5° (the slew scene without noise).
-  static constexpr double kLinearBelowRad = 0.008726646259971648;
-  // Below this share of the slew axis's motion the predicted pair is not what a planar fit measures
+  // 0.1°: over the window the gimbals still turn (the steering's Jacobian, and the other pairs' output
+  // directions the modal filter nulls, with them), by an amount ∝ the error where it opens. The fitted ω_n
+  // against the sampled pair, from 2°, 1°, 0.5°, 0.25°, 0.125°, 0.1°: slew −2.1e-3, −8.4e-4, −3.1e-4, −1.2e-4,
+  // −8.2e-5, −5.4e-5; singularity-robust (coupled) −1.4e-3, +1.5e-3, +1.9e-3, +1.4e-3, +8.0e-4, +7.1e-4.
+  static constexpr double kLinearBelowRad = 0.0017453292519943296;
+  // Below this share of the slew axis's motion the pair is measured through the modal filter in earnest
   // (cmg_cluster_sampled.hpp): 0.996 and 0.981 on the slew and pseudo-inverse scenes, 0.60 where the
   // singularity-robust scenes end.
   static constexpr double kSinglePairShare = 0.95;
   struct ApproachSample {
-    double q, w;     // q_k, ω_k [-, rad/s]
+    double y[6];     // q (the error quaternion's vector part), ω [-, rad/s]
     double v[3];     // body-rate errors read [rad/s]
   };
   // The slew axis's index when it is a principal axis of the spacecraft (one body axis, J diagonal), else −1.
@@ -192,8 +195,9 @@ class CmgClusterRun {
     return k;
   }
   // The attitude pair about the slew axis (cmg_cluster_sampled.hpp), predicted where the run ends, and
-  // measured: the noise's response through the sampled loop taken off the recorded approach, the planar
-  // recurrence of (q_k, ω_k) fitted to means over 1/(50 ω_a) (planar_mode_fit.hpp).
+  // measured: the noise's response through the sampled loop taken off the recorded approach, the modal
+  // filter's y = W (q, ω) (the other pairs' output directions nulled), the planar recurrence of y fitted to
+  // means over 1/(50 ω_a) (planar_mode_fit.hpp).
   void attitude_loop_figures(nlohmann::json& f) const {
     if (axis_ < 0) {
       f["attitude_loop"] = "not computed: the slew axis is not a principal axis, or the law runs below the tick rate";
@@ -211,7 +215,8 @@ class CmgClusterRun {
     f["attitude_pair_share"] = p.share;
     if (p.share < kSinglePairShare) {
       f["attitude_loop"] = "the gimbal configuration couples the axes: another attitude pair carries part of the slew "
-                           "axis's motion, and the fitted pair is the two pairs' mixture";
+                           "axis's motion; the fit sees this pair through the modal filter (the other pairs' output "
+                           "directions nulled)";
     }
     f["attitude_window_from_s"] = approach_start_ < 0 ? nlohmann::json(nullptr) : nlohmann::json(approach_from_s_);
     f["attitude_natural_frequency_rad_s"] = nullptr;
@@ -224,12 +229,14 @@ class CmgClusterRun {
     double sq = 0.0, sw = 0.0, noise_max = 0.0;
     for (std::size_t j = 0; j < approach_.size(); ++j) {
       const ApproachSample& a = approach_[j];
-      const double qn = 0.5 * x[3 + axis_], wn = x[axis_];
+      Eigen::Matrix<double, 6, 1> yn;
+      yn << 0.5 * x[3], 0.5 * x[4], 0.5 * x[5], x[0], x[1], x[2];
+      const Eigen::Vector2d filtered = p.filter * (Eigen::Map<const Eigen::Matrix<double, 6, 1>>(a.y) - yn);
       const auto jj = static_cast<std::int64_t>(j);
       if (approach_start_ >= 0 && jj >= approach_start_) {
-        noise_max = std::max({noise_max, std::fabs(qn), std::fabs(wn)});
-        sq += a.q - qn;
-        sw += a.w - wn;
+        noise_max = std::max({noise_max, std::fabs(yn[axis_]), std::fabs(yn[3 + axis_])});
+        sq += filtered[0];
+        sw += filtered[1];
         if ((jj - approach_start_ + 1) % every == 0) {
           fit.add(approach_from_s_ + static_cast<double>(jj - approach_start_) * tick, sq / static_cast<double>(every),
                   sw / static_cast<double>(every));

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 
 #include "sim/analysis/state_feedback_linearisation.hpp"
 
@@ -123,6 +124,7 @@ CmgClusterSampled cmg_cluster_sampled(const CmgClusterScene& s, const plants::Cm
   struct Candidate {
     std::complex<double> s;
     double weight;
+    Eigen::Matrix<std::complex<double>, 6, 1> out;  // (q, ω) of its eigenvector
   };
   std::vector<Candidate> near;
   for (Eigen::Index i = 0; i < es.eigenvalues().size(); ++i) {
@@ -134,7 +136,13 @@ CmgClusterSampled cmg_cluster_sampled(const CmgClusterScene& s, const plants::Cm
     double w = 0.0;
     if (iw >= 0) w += std::norm(v(iw)) * Jk * Jk;  // ω_k against φ_k: both in the units of the loop's torque
     if (ip >= 0) w += std::norm(v(ip)) * a0 * a0 * Jk * Jk;
-    near.push_back({sv, w / v.squaredNorm()});
+    Eigen::Matrix<std::complex<double>, 6, 1> out = Eigen::Matrix<std::complex<double>, 6, 1>::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Index a = pos(3 + k), b = pos(k);
+      if (a >= 0) out(k) = 0.5 * v(a);
+      if (b >= 0) out(3 + k) = v(b);
+    }
+    near.push_back({sv, w / v.squaredNorm(), out});
   }
   double total = 0.0;
   for (const Candidate& cand : near) total += cand.weight;
@@ -148,6 +156,28 @@ CmgClusterSampled cmg_cluster_sampled(const CmgClusterScene& s, const plants::Cm
     near.erase(near.begin() + static_cast<std::ptrdiff_t>(best));
   }
   r.share = total > 0.0 ? chosen / total : 0.0;
+  // The modal filter: the plane orthogonal to the other attitude pairs' output directions. The gimbals' null
+  // motions (roots near 0 that barely reach the attitude: weight ~1e-9 of the pair's) are not pairs to null:
+  // the fit's drift terms take them. Where the other pairs do not span four directions (they do not reach
+  // the outputs), the slew axis's own (q_k, ω_k).
+  r.filter.setZero();
+  r.filter(0, axis) = 1.0;
+  r.filter(1, 3 + axis) = 1.0;
+  std::erase_if(near, [&](const Candidate& cand) { return cand.weight < 1e-6 * chosen; });
+  if (!near.empty()) {
+    Eigen::MatrixXd other(6, 2 * static_cast<Eigen::Index>(near.size()));
+    for (std::size_t j = 0; j < near.size(); ++j) {
+      const auto col = static_cast<Eigen::Index>(2 * j);
+      const double n = near[j].out.norm();
+      other.col(col) = near[j].out.real() / n;
+      other.col(col + 1) = near[j].out.imag() / n;
+    }
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(other, Eigen::ComputeFullU);
+    const Eigen::VectorXd& sv = svd.singularValues();
+    Eigen::Index rank = 0;
+    while (rank < sv.size() && sv(rank) > 1e-6 * sv(0)) ++rank;
+    if (rank == 4) r.filter = svd.matrixU().rightCols(2).transpose();
+  }
   const analysis::ZohStep z = analysis::zoh_step(A, B, T);
   r.Phi = z.Phi;
   r.Gamma = z.Gamma;

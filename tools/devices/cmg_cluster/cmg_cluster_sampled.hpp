@@ -10,7 +10,8 @@
 // is ill-conditioned, its sum and product are not. The gimbal configuration can couple the axes: the rotors'
 // load on the gimbal servos, h ω·t_i on gimbal i, turns a body rate into gimbal rate errors ∝ Aᵀ ω and a torque
 // error ∝ A Aᵀ ω, diagonal in body axes for the pyramid at δ = 0 but not where the singularity-robust scenes end (δ ≈
-// (0.58, 1.63, −1.63, −0.58) rad): there two pairs share the slew axis's motion (`share`). Also the loop over one period for the response to the
+// (0.58, 1.63, −1.63, −0.58) rad): there two pairs share the slew axis's motion (`share`), and the run
+// measures the pair through the modal filter (`filter`). Also the loop over one period for the response to the
 // body-rate noise (x⁺ = Φ x + Γ u[k − L], u = K x + K_v v), which the run takes off before it fits.
 #pragma once
 
@@ -29,9 +30,13 @@ struct CmgClusterSampled {
   std::complex<double> sampled[2]{};  // the sampled loop's pair nearest the design's [1/s]
   // The pair's share of the slew axis's motion: its roots' eigenvector weight on ω_k, φ_k over that of every
   // root near the design [-]. Near 1 where the axes decouple (δ = 0: 0.996 on the slew scene); where the
-  // configuration couples them, another pair carries the rest, and a planar fit of (q_k, ω_k) measures the
-  // two pairs' mixture, not this pair.
+  // configuration couples them, another pair carries the rest, and a planar fit of (q_k, ω_k) alone would
+  // measure the two pairs' mixture (+9.1e-3 in ω_n on the singularity-robust scene).
   double share{0.0};
+  // The modal filter: y = W (q, ω) (rows orthonormal, q = φ/2 per axis) nulls the output directions of the
+  // other two attitude pairs, so that a planar fit of y sees this pair alone; the slew axis's own (q_k, ω_k)
+  // when the other pairs do not span four output directions.
+  Eigen::Matrix<double, 2, 6> filter{Eigen::Matrix<double, 2, 6>::Zero()};
   analysis::SampledLoopRoots roots;
   Eigen::MatrixXd Phi, Gamma, Kx, Kv;  // kN×kN, kN×4, 4×kN, 4×3
 };
