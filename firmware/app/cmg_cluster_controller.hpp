@@ -36,6 +36,8 @@
 
 namespace gyrostab::firmware {
 
+static_assert(kMaxCmgUnits == static_cast<int>(msg::kClusterUnits), "the law steers the contract's cluster units");
+
 struct CmgClusterConfig {
   RuntimeConfig runtime{};
   CmgArray array{};

@@ -29,6 +29,8 @@
 
 namespace gyrostab::plants {
 
+static_assert(models::kMaxCmgs == static_cast<int>(msg::kClusterUnits), "the model's units are the contract's");
+
 struct CmgClusterSensorParams {
   double rate_noise_density{1e-6};                  // body-rate white noise [rad/s/√Hz]
   std::int64_t gimbal_encoder_counts_per_rev{1 << 20};  // absolute single-turn [counts/rev]

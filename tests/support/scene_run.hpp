@@ -44,21 +44,25 @@ inline nlohmann::json figures_of(const std::string& path, const std::string& tex
   return r.report["figures"];
 }
 
+// One figure `<key>` of a report: measured, `<key>_predicted_sampled` and `<key>_predicted` (0 when the run
+// measured none, which the test is told of).
+struct Predicted {
+  double measured{0}, sampled{0}, continuous{0};
+  static Predicted of(const nlohmann::json& f, const std::string& key) {
+    EXPECT_TRUE(f[key].is_number()) << key << ": " << f.dump();
+    if (!f[key].is_number()) return {};
+    return {f[key].get<double>(), f[key + "_predicted_sampled"].get<double>(), f[key + "_predicted"].get<double>()};
+  }
+};
+
 // A report's figures of one mode (`<mode>_decay_rate_per_s`, `<mode>_frequency_rad_s`): measured, the sampled
 // loop's and the continuous loop's (docs/sampled-data.md), with their relative differences.
 struct ModeFigures {
   double decay{0}, freq{0}, decay_sampled{0}, freq_sampled{0}, decay_continuous{0}, freq_continuous{0};
 
   static ModeFigures of(const nlohmann::json& f, const std::string& mode = "nutation") {
-    const std::string d = mode + "_decay_rate_per_s", w = mode + "_frequency_rad_s";
-    EXPECT_TRUE(f[d].is_number()) << f.dump();
-    if (!f[d].is_number()) return {};
-    return {f[d].get<double>(),
-            f[w].get<double>(),
-            f[d + "_predicted_sampled"].get<double>(),
-            f[w + "_predicted_sampled"].get<double>(),
-            f[d + "_predicted"].get<double>(),
-            f[w + "_predicted"].get<double>()};
+    const Predicted d = Predicted::of(f, mode + "_decay_rate_per_s"), w = Predicted::of(f, mode + "_frequency_rad_s");
+    return {d.measured, w.measured, d.sampled, w.sampled, d.continuous, w.continuous};
   }
   double decay_vs_sampled() const { return decay / decay_sampled - 1.0; }
   double freq_vs_sampled() const { return freq / freq_sampled - 1.0; }
@@ -77,15 +81,8 @@ struct PairFigures {
   double wn{0}, zeta{0}, wn_s{0}, zeta_s{0}, wn_c{0}, zeta_c{0};
 
   static PairFigures of(const nlohmann::json& f, const std::string& pair) {
-    const std::string w = pair + "_natural_frequency_rad_s", z = pair + "_damping_ratio";
-    EXPECT_TRUE(f[w].is_number()) << f.dump();
-    if (!f[w].is_number()) return {};
-    return {f[w].get<double>(),
-            f[z].get<double>(),
-            f[w + "_predicted_sampled"].get<double>(),
-            f[z + "_predicted_sampled"].get<double>(),
-            f[w + "_predicted"].get<double>(),
-            f[z + "_predicted"].get<double>()};
+    const Predicted w = Predicted::of(f, pair + "_natural_frequency_rad_s"), z = Predicted::of(f, pair + "_damping_ratio");
+    return {w.measured, z.measured, w.sampled, z.sampled, w.continuous, z.continuous};
   }
   void print(const char* what) const {
     std::printf("  %s: w_n %.9g (sampled %+.2e, continuous %+.2e), zeta %.9g (sampled %+.2e, continuous %+.2e)\n",

@@ -229,11 +229,11 @@ class CmgClusterRun {
     double sq = 0.0, sw = 0.0, noise_max = 0.0;
     for (std::size_t j = 0; j < approach_.size(); ++j) {
       const ApproachSample& a = approach_[j];
-      Eigen::Matrix<double, 6, 1> yn;
-      yn << 0.5 * x[3], 0.5 * x[4], 0.5 * x[5], x[0], x[1], x[2];
-      const Eigen::Vector2d filtered = p.filter * (Eigen::Map<const Eigen::Matrix<double, 6, 1>>(a.y) - yn);
       const auto jj = static_cast<std::int64_t>(j);
       if (approach_start_ >= 0 && jj >= approach_start_) {
+        Eigen::Matrix<double, 6, 1> yn;
+        yn << 0.5 * x[3], 0.5 * x[4], 0.5 * x[5], x[0], x[1], x[2];
+        const Eigen::Vector2d filtered = p.filter * (Eigen::Map<const Eigen::Matrix<double, 6, 1>>(a.y) - yn);
         noise_max = std::max({noise_max, std::fabs(yn[axis_]), std::fabs(yn[3 + axis_])});
         sq += filtered[0];
         sw += filtered[1];

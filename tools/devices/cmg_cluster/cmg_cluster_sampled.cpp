@@ -118,7 +118,6 @@ CmgClusterSampled cmg_cluster_sampled(const CmgClusterScene& s, const plants::Cm
       if (keep[i] == full) return static_cast<Eigen::Index>(i);
     return Eigen::Index{-1};
   };
-  const Eigen::Index iw = pos(axis), ip = pos(3 + axis);
   const Eigen::EigenSolver<Eigen::MatrixXd> es(r.roots.M, true);
   const std::complex<double> centre(-0.5 * a1, 0.0);
   struct Candidate {
@@ -133,15 +132,14 @@ CmgClusterSampled cmg_cluster_sampled(const CmgClusterScene& s, const plants::Cm
     const std::complex<double> sv = std::log(z) / T;
     if (std::abs(sv - centre) > 0.5 * a1) continue;
     const Eigen::VectorXcd v = es.eigenvectors().col(i);
-    double w = 0.0;
-    if (iw >= 0) w += std::norm(v(iw)) * Jk * Jk;  // ω_k against φ_k: both in the units of the loop's torque
-    if (ip >= 0) w += std::norm(v(ip)) * a0 * a0 * Jk * Jk;
     Eigen::Matrix<std::complex<double>, 6, 1> out = Eigen::Matrix<std::complex<double>, 6, 1>::Zero();
     for (int k = 0; k < 3; ++k) {
       const Eigen::Index a = pos(3 + k), b = pos(k);
       if (a >= 0) out(k) = 0.5 * v(a);
       if (b >= 0) out(3 + k) = v(b);
     }
+    // ω_k against φ_k = 2 q_k: both in the units of the loop's torque.
+    const double w = (std::norm(out(3 + axis)) + 4.0 * a0 * a0 * std::norm(out(axis))) * Jk * Jk;
     near.push_back({sv, w / v.squaredNorm(), out});
   }
   double total = 0.0;
