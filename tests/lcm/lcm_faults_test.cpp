@@ -108,6 +108,20 @@ TEST(LcmFaults, ANonFiniteSensorFrameIsHeldOverByTheFaultMonitor) {
   EXPECT_EQ(std::stoul(cell_at(csv, "status_bits", 1020)), 0u) << "recovered: a held tick is not latched";
 }
 
+// A sensor fault stays latched: a run whose last 99 of 5000 sensor frames carry a NaN holds one tick, then
+// ends in the safe state — 98 ticks, under the 5 % share, and still not "completed".
+TEST(LcmFaults, ARunThatEndsInALatchedSafeStateIsDegradedWhateverTheShare) {
+  TempDir d;
+  const Exit e = run(cat(lcm_run(d / "out", "5000"), {"--corrupt-sensor", "4901:99"}));
+  EXPECT_EQ(e.code, 8) << "degraded";
+  const nlohmann::json r = read_json(d / "out/report.json");
+  const nlohmann::json& safe = r["controller_process"]["link"]["safe_state"];
+  EXPECT_LT(safe["share"].get<double>(), 0.05);
+  EXPECT_EQ(safe["at_end"], true);
+  EXPECT_NE(r["processes"]["what_happened"].get<std::string>().find("ended in the safe state"), std::string::npos)
+      << r["processes"]["what_happened"];
+}
+
 TEST(LcmFaults, RejectedActuatorFramesGiveZeroTorqueForThoseTicks) {
   TempDir d;
   const Exit e = run(cat(lcm_run(d / "out", "1600"), {"--corrupt-actuator", "1500:20"}));

@@ -335,12 +335,22 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
                      {"ticks_without_frame", link.missing_ticks},
                      {"link_loss_acknowledged", link.acknowledgements},
                      {"acknowledge_after_good_frames", kAcknowledgeAfterGoodFrames}};
-  const bool degraded = happened == "completed" && safe_share > kMaxSafeShare;
+  // A run that ends with the safe command out did not finish its job, however short the latched stretch.
+  const bool ended_safe = link.ticks_run > 0 && ctl->in_safe_state();
+  l["safe_state"]["at_end"] = ended_safe;
+  const bool degraded = happened == "completed" && (ended_safe || safe_share > kMaxSafeShare);
   if (degraded) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "degraded: the safe state held %lld of %lld ticks (%.1f %%, more than %.0f %%)",
-                  static_cast<long long>(link.safe_ticks), static_cast<long long>(link.ticks_run),
-                  100.0 * safe_share, 100.0 * kMaxSafeShare);
+    char buf[240];
+    if (ended_safe) {
+      std::snprintf(buf, sizeof buf,
+                    "degraded: the run ended in the safe state (held %lld of %lld ticks, %.1f %%)",
+                    static_cast<long long>(link.safe_ticks), static_cast<long long>(link.ticks_run),
+                    100.0 * safe_share);
+    } else {
+      std::snprintf(buf, sizeof buf, "degraded: the safe state held %lld of %lld ticks (%.1f %%, more than %.0f %%)",
+                    static_cast<long long>(link.safe_ticks), static_cast<long long>(link.ticks_run),
+                    100.0 * safe_share, 100.0 * kMaxSafeShare);
+    }
     happened = buf;
   }
   l["what_happened"] = happened;

@@ -47,8 +47,9 @@ inline constexpr std::int64_t kMaxResyncTicks = 10;
 // acknowledged once this many frames in a row have been accepted again (10 ms at 1 kHz); the fault monitor
 // then leaves it on the next good frame. A sensor fault (NaN, out of range, reported) stays latched.
 inline constexpr std::int64_t kAcknowledgeAfterGoodFrames = 10;
-// A link run whose controller spent more than this share of its ticks in the safe state did not do its job:
-// its verdict is "degraded", not "completed", and it exits kExitDegraded.
+// A link run whose controller spent more than this share of its ticks in the safe state, or that ended with the
+// safe state latched (whatever the share), did not do its job: its verdict is "degraded", not "completed", and
+// it exits kExitDegraded.
 inline constexpr double kMaxSafeShare = 0.05;
 inline constexpr int kExitDegraded = 8;
 // Exit code of a process whose peer fell silent for the receive timeout (and of `run --transport lcm` when a
