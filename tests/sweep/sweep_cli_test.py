@@ -260,6 +260,9 @@ BAD = [  # (what, replace this, with this, the message must hold all of these)
     ("not a ship", SCENE, os.path.join(SOURCE, "sim", "scenes", "monorail.toml"),
      ["[study] scene", "ship_roll_damper"]),
     ("settle beyond duration", "settle_s = 1", "settle_s = 5", ["[study] settle_s", "longer than duration_s"]),
+    ("too many tasks", "seeds_per_cell = 2",
+     "seeds_per_cell = 10000\nheadings_deg = [" + ", ".join(str(h) for h in range(0, 100, 5)) + "]",
+     ["[study]", "3 × 20 × 10000 × 2 = 1200000 tasks", "more than 1000000"]),
     ("headings' probabilities", "settle_s = 1", "settle_s = 1\nheadings_deg = [90, 45]\nheading_probability = [1]",
      ["[study] heading_probability", "2 headings"]),
 ]

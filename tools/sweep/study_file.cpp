@@ -15,6 +15,9 @@ namespace {
 constexpr int kMaxSeedsPerCell = 10000;
 constexpr std::size_t kMaxCells = 100000;
 constexpr std::size_t kMaxVariants = 1000;
+// The study's task count, cells × headings × seeds × variants: each factor within its own limit can still
+// multiply to a list the machine cannot hold (1e9 tasks); a study is refused before anything is written.
+constexpr std::int64_t kMaxTasks = 1'000'000;
 
 // Collects problems with the file and line of the node they concern.
 class Problems {
@@ -405,6 +408,18 @@ bool read_study_file(const std::string& path, Study& study, std::vector<std::str
   read_sea_states(root.get("sea_state"), s, p, root);
   read_variants(root.get("variant"), s, p, root);
   if (study_table != nullptr && !scene.empty()) read_base_scene(path, scene, *study_table, s, p);
+  // Each factor is bounded (cells 1e5, seeds 1e4, variants 1e3, headings by the file's size), so the product
+  // fits an int64 without overflow.
+  const std::int64_t cells = static_cast<std::int64_t>(s.cells.size()), headings = s.heading_count(),
+                     seeds = s.seeds_per_cell, variants = static_cast<std::int64_t>(s.variants.size());
+  const std::int64_t tasks = cells * headings * seeds * variants;
+  if (tasks > kMaxTasks) {
+    p.add(study_table, "[study]",
+          "cells × headings × seeds_per_cell × variants = " + std::to_string(cells) + " × " +
+              std::to_string(headings) + " × " + std::to_string(seeds) + " × " + std::to_string(variants) + " = " +
+              std::to_string(tasks) + " tasks, more than " + std::to_string(kMaxTasks) +
+              ": split the study into several");
+  }
   if (p.count() > 0) return false;
   study = std::move(s);
   return true;
