@@ -365,6 +365,23 @@ class PlotRunTest(unittest.TestCase):
         write_run(d, cols, t, report)
         self.assert_figure(d, run_plot(d))
 
+    def test_a_megabyte_scene_name_is_shortened_in_the_title(self):
+        # A scene file may be 1 MiB, its name nearly all of it: laid out whole as a title it took matplotlib
+        # 754 MB and then failed. The title keeps the first 80 characters; the figure is drawn as usual.
+        d = os.path.join(self.tmp, "long_name")
+        cols, t, report = monorail()
+        report["scene"]["name"] = "n" * 1000000
+        write_run(d, cols, t, report)
+        r = subprocess.run([PYTHON, "-c", "import resource, subprocess, sys\n"
+                            "p = subprocess.run(sys.argv[1:])\n"
+                            "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n"
+                            "sys.exit(p.returncode)", PYTHON, SCRIPT, d],
+                           capture_output=True, text=True, env=dict(os.environ, GYROSTAB_PLOT_STRICT="1"), timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        peak_mb = int(r.stdout.split()[-1]) / 1024.0
+        self.assertLess(peak_mb, 400.0, "the plot helper's peak resident memory")
+        self.assertTrue(os.path.exists(os.path.join(d, "signals.png")))
+
     def test_no_report_draws_the_generic_figure(self):
         d = os.path.join(self.tmp, "no_report")
         cols, t, _ = monorail()

@@ -200,5 +200,24 @@ TEST(OutputDir, ARunReplacesTheWholeSetOfOutputs) {
   EXPECT_FALSE(fs::exists(out + "/signals.png")) << "an older run's figure left beside this run's report";
 }
 
+// A plot helper that fails says why itself (one line); the run's message names the helper and its exit status
+// and does not blame a missing matplotlib that is there.
+TEST(OutputDir, AFailingPlotHelperIsNamedWithItsExitStatus) {
+  testing::ScratchDir d("hostile-out");
+  const std::string script = d.file("failing_plot.py");
+  {
+    std::ofstream f(script);
+    f << "import sys\nsys.stderr.write('failing_plot.py: the figure could not be laid out\\n')\nsys.exit(1)\n";
+  }
+  ::setenv("GYROSTAB_PLOT_SCRIPT", script.c_str(), 1);
+  const Result r = run_text(monorail_text(), false, 100, d.file("o"));
+  ::unsetenv("GYROSTAB_PLOT_SCRIPT");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("the figure could not be laid out"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("failing_plot.py exited 1"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("matplotlib"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(d.file("o") + "/report.json"));
+}
+
 }  // namespace hostile_input_test
 }  // namespace gyrostab

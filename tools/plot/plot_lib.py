@@ -27,6 +27,7 @@ import matplotlib.transforms as mtransforms  # noqa: E402
 import numpy as np  # noqa: E402
 
 DPI = 110
+MAX_TITLE_NAME = 80  # characters of the scene name in a figure's title
 WIDTH_IN = 12.0
 DEG = 180.0 / math.pi
 
@@ -79,6 +80,10 @@ class Run:
         self.device = dev if isinstance(dev, str) else ""
         name = self.scene.get("name")
         self.name = name if isinstance(name, str) and name else os.path.basename(os.path.abspath(out_dir))
+        # A title is one line: a scene may name itself with up to its file's size (1 MiB), and laying out that
+        # much text costs matplotlib hundreds of MB.
+        if len(self.name) > MAX_TITLE_NAME:
+            self.name = self.name[:MAX_TITLE_NAME - 1] + "…"
         self.seed = self.scene.get("seed")
         d = self.scene.get("duration_s")
         self.duration = float(d) if _finite(d) and d > 0 else float(self.t[-1])

@@ -53,10 +53,17 @@ bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recor
   if (cfg.plots && (here == nullptr || *here != '\0')) {
     const std::string script = here ? here : std::string(build_source_dir()) + "/tools/plot/plot_run.py";
     std::string why;
-    if (run_program({"/usr/bin/python3", script, out.staging_dir()}, why) != 0) {
-      std::fprintf(stderr, "gyrostab: plots not written (needs /usr/bin/python3 with python3-matplotlib%s); "
-                           "report.json and signals.csv are complete\n",
-                   why.empty() ? "" : ("; " + why).c_str());
+    const int rc = run_program({"/usr/bin/python3", script, out.staging_dir()}, why);
+    // Say what failed: the interpreter could not start, the helper was killed, or it exited with a status
+    // after its own one-line message (which names the cause: a bad signals.csv, missing libraries, ...).
+    if (rc < 0) {
+      std::fprintf(stderr, "gyrostab: plots not written (%s%s); report.json and signals.csv are complete\n",
+                   why.c_str(),
+                   why.rfind("cannot start", 0) == 0 ? ": needs /usr/bin/python3 with python3-matplotlib" : "");
+    } else if (rc != 0) {
+      std::fprintf(stderr, "gyrostab: plots not written (%s exited %d; its message is above); report.json and "
+                           "signals.csv are complete\n",
+                   script.c_str(), rc);
     }
   }
   std::vector<std::string> written;
