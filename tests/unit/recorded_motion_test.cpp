@@ -374,6 +374,63 @@ TEST(MotionCsv, BadFilesAreRefusedWithTheirLine) {
                   "m.csv:1: give the attitude once"));
 }
 
+TEST(MotionCsv, ValuesOutsideTheirColumnsRangeAreRefusedWithTheirLine) {
+  EXPECT_TRUE(has(refuse(kHeader + row(0) + "0.01, 1, 0, 0, 0, 1e308, 0, 0, 0, 0, 9.8\n" + row(0.02)),
+                  "m.csv:3: column wx: '1e308' is 1e+308 rad/s, outside ±100 rad/s"));
+  EXPECT_TRUE(has(refuse(kHeader + row(0) + "0.01, 1, 0, 0, 0, 0, 0, -101, 0, 0, 9.8\n" + row(0.02)),
+                  "m.csv:3: column wz: '-101' is -101 rad/s, outside ±100 rad/s"));
+  EXPECT_TRUE(has(refuse(kHeader + row(0) + "0.01, 1, 0, 0, 0, 0, 0, 0, 0, 2000, 9.8\n" + row(0.02)),
+                  "m.csv:3: column fy: '2000' is 2000 m/s^2, outside ±1000 m/s^2"));
+  const std::vector<std::string> close =
+      refuse(kHeader + row(0) + row(0.01) + "0.0100000005, 1, 0, 0, 0, 0.1, 0, 0, 0, 0, 9.8\n" + row(0.02));
+  EXPECT_TRUE(has(close, "m.csv:4: time 0.0100000005 s is ")) << (close.empty() ? "" : close.front());
+  EXPECT_TRUE(has(close, "s after line 3's: rows must be at least 1e-06 s apart")) << (close.empty() ? "" : close.front());
+  EXPECT_TRUE(has(refuse(kHeader + row(0) + row(0.01) + row(2e7)), "m.csv:4: column t: '2e+07' is 20000000 s, outside ±10000000 s"));
+}
+
+// `check` and `run` read a record through one reader: a rate of 1e308 rad/s in the coning record, which the
+// plant could not integrate (non-finite at tick 979), is refused by both with exit 2 and the line.
+TEST(MotionFile, CheckAndRunRefuseTheSameRecordWithTheSameMessage) {
+  const std::string dir = ::testing::TempDir() + "/recorded_motion_range";
+  std::filesystem::create_directories(dir);
+  {
+    std::ifstream in(GYROSTAB_SOURCE_DIR "/sim/motion_records/coning-vibration.csv");
+    std::ofstream out(dir + "/fast.csv");
+    std::string line;
+    int n = 0;
+    while (std::getline(in, line)) {
+      ++n;
+      if (n == 1000) {  // a data row: t, q0..q3, then wx
+        std::size_t at = 0;
+        for (int commas = 0; commas < 5; ++commas) at = line.find(',', at) + 1;
+        line = line.substr(0, at) + "1e308" + line.substr(line.find(',', at));
+      }
+      out << line << "\n";
+    }
+  }
+  std::ifstream scene(kScenes + "coning-recorded-motion.toml");
+  std::stringstream text;
+  text << scene.rdbuf();
+  std::string t = text.str();
+  const std::size_t at = t.find("../motion_records/coning-vibration.csv");
+  ASSERT_NE(at, std::string::npos);
+  t.replace(at, std::string("../motion_records/coning-vibration.csv").size(), "fast.csv");
+  std::ofstream(dir + "/fast.toml") << t;
+  for (const bool check_only : {true, false}) {
+    tools::RunRequest req;
+    req.scene_path = dir + "/fast.toml";
+    req.check_only = check_only;
+    req.write_outputs = false;
+    req.progress = false;
+    ::testing::internal::CaptureStderr();
+    const int rc = tools::run_scene(req);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(rc, 2) << (check_only ? "check" : "run") << ": " << err;
+    EXPECT_NE(err.find("fast.csv:1000: column wx: '1e308' is 1e+308 rad/s, outside ±100 rad/s"), std::string::npos)
+        << err;
+  }
+}
+
 TEST(MotionCsv, EulerAnglesDegreesAndGAreConverted) {
   const std::string text =
       "t [s], roll [deg], pitch [deg], yaw [deg], wx [deg/s], wy [deg/s], wz [deg/s], fx [g], fy [g], fz [g]\r\n"

@@ -20,24 +20,34 @@ struct ColumnSpec {
   std::string_view name;
   std::array<std::string_view, 3> units;  // accepted units ("" for a dimensionless column)
   std::array<double, 3> scale;            // each unit's factor to SI
+  double max_abs;                         // the largest magnitude accepted, in SI (header of motion_csv.hpp)
+  std::string_view si_unit;               // for the message
 };
 
+// Ranges: a recorded base moves like a vehicle or a test table, not like a number the file happens to hold.
+// |ω| ≤ 100 rad/s (5730 °/s, above any IMU's range), |f| ≤ 1000 m/s² (102 g), |t| ≤ 1e7 s (116 days),
+// angles ≤ 1e6 rad unwrapped; the quaternion's components are held by its norm check.
+constexpr double kMaxTime = 1e7, kMaxAngle = 1e6, kMaxRate = 100.0, kMaxForce = 1000.0;
+
 constexpr std::array<ColumnSpec, kColumns> kSpecs{{
-    {"t", {"s"}, {1.0}},
-    {"q0", {"", "-"}, {1.0, 1.0}},
-    {"q1", {"", "-"}, {1.0, 1.0}},
-    {"q2", {"", "-"}, {1.0, 1.0}},
-    {"q3", {"", "-"}, {1.0, 1.0}},
-    {"roll", {"deg", "rad"}, {kDeg, 1.0}},
-    {"pitch", {"deg", "rad"}, {kDeg, 1.0}},
-    {"yaw", {"deg", "rad"}, {kDeg, 1.0}},
-    {"wx", {"rad/s", "deg/s"}, {1.0, kDeg}},
-    {"wy", {"rad/s", "deg/s"}, {1.0, kDeg}},
-    {"wz", {"rad/s", "deg/s"}, {1.0, kDeg}},
-    {"fx", {"m/s^2", "m/s²", "g"}, {1.0, 1.0, 0.0}},
-    {"fy", {"m/s^2", "m/s²", "g"}, {1.0, 1.0, 0.0}},
-    {"fz", {"m/s^2", "m/s²", "g"}, {1.0, 1.0, 0.0}},
+    {"t", {"s"}, {1.0}, kMaxTime, "s"},
+    {"q0", {"", "-"}, {1.0, 1.0}, 2.0, ""},
+    {"q1", {"", "-"}, {1.0, 1.0}, 2.0, ""},
+    {"q2", {"", "-"}, {1.0, 1.0}, 2.0, ""},
+    {"q3", {"", "-"}, {1.0, 1.0}, 2.0, ""},
+    {"roll", {"deg", "rad"}, {kDeg, 1.0}, kMaxAngle, "rad"},
+    {"pitch", {"deg", "rad"}, {kDeg, 1.0}, kMaxAngle, "rad"},
+    {"yaw", {"deg", "rad"}, {kDeg, 1.0}, kMaxAngle, "rad"},
+    {"wx", {"rad/s", "deg/s"}, {1.0, kDeg}, kMaxRate, "rad/s"},
+    {"wy", {"rad/s", "deg/s"}, {1.0, kDeg}, kMaxRate, "rad/s"},
+    {"wz", {"rad/s", "deg/s"}, {1.0, kDeg}, kMaxRate, "rad/s"},
+    {"fx", {"m/s^2", "m/s²", "g"}, {1.0, 1.0, 0.0}, kMaxForce, "m/s^2"},
+    {"fy", {"m/s^2", "m/s²", "g"}, {1.0, 1.0, 0.0}, kMaxForce, "m/s^2"},
+    {"fz", {"m/s^2", "m/s²", "g"}, {1.0, 1.0, 0.0}, kMaxForce, "m/s^2"},
 }};
+// The shortest interval between two rows: the node slopes are differences over it, and a rate step of
+// 2 × 100 rad/s over 1 µs is still a finite 2e8 rad/s².
+constexpr double kMinInterval = 1e-6;
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -197,6 +207,12 @@ bool parse_motion_csv(std::string_view text, const std::string& name, const Moti
         row_ok = false;
       }
       v[c] = x * header->scale[c];
+      if (row_ok && !(std::abs(v[c]) <= kSpecs[c].max_abs)) {
+        p.at(line_no, "column " + std::string(kSpecs[c].name) + ": " + quote(cell) + " is " + fmt(v[c]) + " " +
+                          std::string(kSpecs[c].si_unit) + ", outside ±" + fmt(kSpecs[c].max_abs) + " " +
+                          std::string(kSpecs[c].si_unit));
+        row_ok = false;
+      }
     }
     if (!row_ok) continue;
     if (!out.t.empty()) {
@@ -204,6 +220,10 @@ bool parse_motion_csv(std::string_view text, const std::string& name, const Moti
       if (!(dt > 0.0)) {
         p.at(line_no, "time " + fmt(v[kT]) + " s does not follow line " + std::to_string(prev_line) + "'s " +
                           fmt(out.t.back()) + " s: times must increase strictly");
+        continue;
+      } else if (dt < kMinInterval) {
+        p.at(line_no, "time " + fmt(v[kT]) + " s is " + fmt(dt) + " s after line " + std::to_string(prev_line) +
+                          "'s: rows must be at least " + fmt(kMinInterval) + " s apart");
         continue;
       } else if (dt > lim.max_gap_s) {
         p.at(line_no, "a gap of " + fmt(dt) + " s after line " + std::to_string(prev_line) +

@@ -8,8 +8,9 @@
 // the attitude q_WB, either q0 q1 q2 q3 (scalar first, unit `-` or none) or roll pitch yaw [deg|rad]
 // (R_WB = Rz(yaw) Ry(pitch) Rx(roll)); the base's absolute angular velocity in base axes wx wy wz
 // [rad/s|deg/s]; the specific force in base axes fx fy fz [m/s^2|m/s²|g]. Rows: one finite decimal number
-// per column. Checks: times strictly increasing, no gap over `max_gap_s`, |‖q‖ − 1| ≤ `quaternion_tolerance`,
-// at least 3 rows. Docs: docs/models/suspension-motion.md#recorded-motion.
+// per column, within its range (|t| ≤ 1e7 s, angles ≤ 1e6 rad, |ω_i| ≤ 100 rad/s, |f_i| ≤ 1000 m/s²). Checks:
+// times strictly increasing and at least 1 µs apart, no gap over `max_gap_s`, |‖q‖ − 1| ≤
+// `quaternion_tolerance`, at least 3 rows. `check` and `run` read a record through this one function. Docs: docs/models/suspension-motion.md#recorded-motion.
 #pragma once
 
 #include <cstdio>

@@ -117,7 +117,8 @@ constexpr const char* kNote =
     "A device whose base moves (`power_stabilizer`, `coning`, `gimbal_error`) can have it moved by a generator or by a recorded motion "
     "(sim/motion/scene_base_motion.hpp). `kind = \"recorded\"` reads a CSV of time, attitude, angular rate and "
     "specific force at scene read time; it is refused, with the file's line, when its times do not increase "
-    "strictly, leave a gap over `max_gap_s`, hold a NaN/inf, lack or repeat a column, carry a non-unit "
+    "strictly (or by less than 1 µs), leave a gap over `max_gap_s`, hold a NaN/inf or a value outside its "
+    "column's range (|ω| ≤ 100 rad/s, |f| ≤ 1000 m/s², |t| ≤ 1e7 s), lack or repeat a column, carry a non-unit "
     "quaternion, or do not cover [0, duration_s]. `gyrostab motion-record SCENE --out FILE` writes the motion "
     "of a scene's generator in this format. The format, the interpolation and its error bound: "
     "docs/models/suspension-motion.md#recorded-motion.";
