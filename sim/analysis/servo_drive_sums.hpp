@@ -1,21 +1,23 @@
-// The servo gyro's measurement over the steady drive (Magnus §14.4, (14.42)-(14.44)): sums against the drive
+// The servo gyro's measurement over the steady drive (Magnus §14.4, (14.42)-(14.44)): fits against the drive
 // angle β — the motor's phase, not the clock's. With α = α_A cos(β − φ), M1^KR = −H cosβ β' and (14.43)
-// M2^K = ½ H Ω α_A (sin(2β − φ) − sin φ), the Fourier sums over whole revolutions give α_A, φ, the amplitude
-// of M1 and the mean and 2β-harmonic of M2 exactly for sinusoids sampled uniformly in β (to O(rate ripple)
-// otherwise), while the sensor noise in M2 averages out. Allocation-free; read by tools/devices/servo_gyro/servo_gyro_run.cpp.
-// Test: none of its own yet; the figures of sim/scenes/servo-gyro.toml run in tests/determinism.
+// M2^K = ½ H Ω α_A (sin(2β − φ) − sin φ), least-squares fits of a mean and the β harmonic of α and M1 and of a
+// mean and the 2β harmonic of M2 (harmonic_fit.hpp) give α_A, φ, the amplitude of M1 and the mean and 2β
+// harmonic of M2 with no leak of a mean into a harmonic, whatever the window and the sampling in β; the sensor
+// noise in M2 averages out. Allocation-free; read by tools/devices/servo_gyro/servo_gyro_run.cpp.
+// Test: tests/unit/harmonic_fit_test.cpp (a mean 10³ times the harmonic over non-whole revolutions); the figures
+// of sim/scenes/servo-gyro.toml run in tests/determinism.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 
+#include "sim/analysis/harmonic_fit.hpp"
+
 namespace gyrostab::analysis {
 
 struct DriveSums {
   std::int64_t n{0};
-  double alpha_cos{0.0}, alpha_sin{0.0};            // Σ α cosβ, Σ α sinβ [rad]
-  double m1_cos{0.0}, m1_sin{0.0};                  // Σ M1 cosβ, Σ M1 sinβ [N m]
-  double m2_mean{0.0}, m2_cos2{0.0}, m2_sin2{0.0};  // Σ M2, Σ M2 cos2β, Σ M2 sin2β [N m]
+  HarmonicFit alpha_fit{}, m1_fit{}, m2_fit{};      // α, M1 against β; M2 against 2β
   double m1_peak{0.0}, m2_peak{0.0};                // max |M1^KR|, max |M2| [N m]
   double rate{0.0}, rate_error_peak{0.0};           // Σ β', max |β' − Ω| [rad/s]
   double motor_power{0.0}, dissipation{0.0};        // Σ M2 β', Σ (d1 α'² + d2 β'²) [W]
@@ -24,16 +26,10 @@ struct DriveSums {
   // rate reference Ω [rad/s] and the damping d1, d2 [N m s/rad].
   void add(double alpha, double beta, double alpha_rate, double beta_rate, double M1, double M2, double Omega,
            double d1, double d2) {
-    const double cb = std::cos(beta), sb = std::sin(beta);
-    const double c2 = cb * cb - sb * sb, s2 = 2.0 * sb * cb;
     ++n;
-    alpha_cos += alpha * cb;
-    alpha_sin += alpha * sb;
-    m1_cos += M1 * cb;
-    m1_sin += M1 * sb;
-    m2_mean += M2;
-    m2_cos2 += M2 * c2;
-    m2_sin2 += M2 * s2;
+    alpha_fit.add(beta, alpha);
+    m1_fit.add(beta, M1);
+    m2_fit.add(2.0 * beta, M2);
     m1_peak = std::fmax(m1_peak, std::fabs(M1));
     m2_peak = std::fmax(m2_peak, std::fabs(M2));
     rate += beta_rate;

@@ -145,10 +145,11 @@ class ServoGyroRun {
       return f;
     }
     const double n = static_cast<double>(d.n);
-    const double alpha_A = 2.0 / n * std::hypot(d.alpha_cos, d.alpha_sin);
-    const double phase = std::atan2(d.alpha_sin, d.alpha_cos);
-    const double m2_harmonic = std::fabs(d.m2_mean / n) + 2.0 / n * std::hypot(d.m2_cos2, d.m2_sin2);
-    const double m1_harmonic = 2.0 / n * std::hypot(d.m1_cos, d.m1_sin);
+    const analysis::HarmonicFit::Result a = d.alpha_fit.solve(), m1 = d.m1_fit.solve(), m2 = d.m2_fit.solve();
+    const double alpha_A = a.amplitude();
+    const double phase = a.phase();
+    const double m2_harmonic = std::fabs(m2.mean) + m2.amplitude();
+    const double m1_harmonic = m1.amplitude();
     f["alpha_A_rad"] = alpha_A;
     f["phase_rad"] = phase;
     f["M1_max_Nm"] = d.m1_peak;

@@ -1,6 +1,8 @@
 // What a U-gyro run reports: the plant of sim/plants/u_gyro_plant.hpp with its meter — over the whole
 // twice-spin periods after the settling time, the output's mean and its component at twice the spin
-// frequency (Fourier sums against the spin angle γ) beside the book's (15.29) through the frame's response
+// frequency (a least-squares fit of mean, trend and the 2γ harmonic against the spin angle γ, which keeps
+// the mean out of the harmonic whatever the window: sim/analysis/harmonic_fit.hpp) beside the book's (15.29)
+// through the frame's response
 // (sim/oracles/u_gyro_output.hpp), and the asymmetry (A^R − B^R)/C^R recovered from the measured amplitude.
 // The CSV columns, the half-step error estimate, and the scene's plant and controller for the run modes.
 #include <algorithm>
@@ -13,6 +15,7 @@
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
+#include "sim/analysis/harmonic_fit.hpp"
 #include "sim/oracles/u_gyro_output.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/u_gyro/u_gyro_scene.hpp"
@@ -30,18 +33,6 @@ const std::vector<std::string>& columns() {
                                           "book_torque_Nm", "status_bits"};
   return c;
 }
-
-// Sums of the output against the twice-spin angle.
-struct HarmonicSums {
-  std::int64_t n{0};
-  double mean{0.0}, cos2{0.0}, sin2{0.0};
-  void add(double beta, double gamma) {
-    ++n;
-    mean += beta;
-    cos2 += beta * std::cos(2.0 * gamma);
-    sin2 += beta * std::sin(2.0 * gamma);
-  }
-};
 
 class UGyroRun {
  public:
@@ -74,7 +65,7 @@ class UGyroRun {
       periods_ = periods;
       done_ = run_;
     }
-    run_.add(plant_.beta_rad(), gamma);
+    run_.add(2.0 * gamma, plant_.beta_rad(), static_cast<double>(ticks_) * s_.loop.tick_s());
   }
   bool finite() const { return plant_.finite(); }
 
@@ -111,20 +102,23 @@ class UGyroRun {
     const char* measured[] = {"mean_output_rad", "twice_spin_amplitude_rad", "twice_spin_amplitude_rel_error",
                               "twice_spin_amplitude_coupled_rel_error",
                               "mean_output_rel_error", "asymmetry_measured"};
-    const HarmonicSums& d = done_;
-    if (d.n == 0) {  // no whole twice-spin period after settling (a short run)
+    const analysis::HarmonicFit::Result d = done_.solve();
+    if (periods_ == 0 || !d.valid) {  // no whole twice-spin period after settling (a short run)
       for (const char* key : measured) f[key] = nullptr;
       return f;
     }
-    const double n = static_cast<double>(d.n);
-    const double mean = d.mean / n, twice = 2.0 / n * std::hypot(d.cos2, d.sin2);
+    const double mean = d.mean, twice = d.amplitude();
+    // A relative error without a reference (Ω = 0: the book's values are 0) is null, not 0.
+    const auto rel = [](double got, double ref) { return ref != 0.0 ? nlohmann::json((got - ref) / ref) : nlohmann::json(); };
     f["mean_output_rad"] = mean;
     f["twice_spin_amplitude_rad"] = twice;
-    f["mean_output_rel_error"] = mean_book != 0.0 ? (mean - mean_book) / mean_book : 0.0;
-    f["twice_spin_amplitude_rel_error"] = twice_book != 0.0 ? (twice - twice_book) / twice_book : 0.0;
-    f["twice_spin_amplitude_coupled_rel_error"] = twice_coupled != 0.0 ? (twice - twice_coupled) / twice_coupled : 0.0;
+    f["mean_output_rel_error"] = rel(mean, mean_book);
+    f["twice_spin_amplitude_rel_error"] = rel(twice, twice_book);
+    f["twice_spin_amplitude_coupled_rel_error"] = rel(twice, twice_coupled);
     // |ε| recovered from the output: the twice-spin amplitude over the frame's receptance and H Ω.
-    f["asymmetry_measured"] = Omega != 0.0 ? twice / (receptance * g.H() * std::fabs(Omega)) : 0.0;
+    f["asymmetry_measured"] =
+        Omega != 0.0 ? nlohmann::json(twice / (receptance * g.H() * std::fabs(Omega))) : nlohmann::json();
+    f["samples"] = done_.samples();
     return f;
   }
 
@@ -144,7 +138,8 @@ class UGyroRun {
   bool started_{false};
   double gamma_start_{0.0};
   std::int64_t periods_{0};
-  HarmonicSums run_{}, done_{};  // the sums so far, and at the last completed twice-spin period
+  // The fit's sums so far, and at the last completed twice-spin period (mean, trend and the 2γ harmonic).
+  analysis::HarmonicFit run_{true}, done_{true};
   std::int64_t ticks_{0};
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
 };
