@@ -100,6 +100,11 @@ class DirectionalGyroRun {
       compensation_sum_ += -firmware::drift_compensation_torque(law, plant_.indicated_heading_rad()) / law.H * h;
     }
     torque_share_ += -plant_.inputs().M2 * h / (law.H * std::cos(plant_.beta_rad()));
+    // The bank that (12.22) leaves out: the case's normal axis, tilted by the bank φ_b, picks up the level
+    // (track) frame's horizontal rate across the track, Ω_left sin φ_b; the indication drifts by that too.
+    const dynamics::Vec3 w_T =
+        plants::plumb_referred(m, m.track, s_.plant.vehicle.earth.rotation_rate).w_IZ_Z;  // forward, left, up
+    bank_sum_ += std::sin(plant_.bank_rad()) * w_T.y() * h;
     SegmentRecord& r = segments_.current();
     if (!r.samples) r.turn_rate = m.turn_rate;
     r.bank_sum += plant_.bank_rad();
@@ -158,7 +163,16 @@ class DirectionalGyroRun {
                   {"earth_rate_term_deg_h", earth_sum_ * per},
                   {"transport_term_deg_h", transport_sum_ * per},
                   {"compensation_deg_h", compensation_sum_ * per},
-                  {"book_residual_deg_h", (earth_sum_ + transport_sum_ + compensation_sum_) * per}};
+                  {"book_residual_deg_h", (earth_sum_ + transport_sum_ + compensation_sum_) * per},
+                  {"bank_term_deg_h", bank_sum_ * per},
+                  {"book_12_22_with_bank_deg_h", (earth_sum_ + transport_sum_ + bank_sum_) * per},
+                  {"book_residual_with_bank_deg_h", (earth_sum_ + transport_sum_ + compensation_sum_ + bank_sum_) * per}};
+    // The free gyro's drift (the indication's less the torquers' share) against (12.22) along the path, with and
+    // without the bank term.
+    const double free = (measured - torque_share_), book = earth_sum_ + transport_sum_;
+    f["drift"]["free_gyro_rel_error_vs_book_12_22"] = book != 0.0 ? nlohmann::json(free / book - 1.0) : nlohmann::json();
+    f["drift"]["free_gyro_rel_error_vs_book_with_bank"] =
+        book + bank_sum_ != 0.0 ? nlohmann::json(free / (book + bank_sum_) - 1.0) : nlohmann::json();
     const firmware::DirectionalGyroCorrectionParams& law = s_.controller.law;
     inner_gimbal_figures(f);
     f["segments"] = segments_json(segments_, T, [&](nlohmann::json& j, const SegmentRecord& r) {
@@ -265,6 +279,7 @@ class DirectionalGyroRun {
   double indicated0_;  // the indication at t = 0, unwrapped [rad]
   double heading_prev_{0.0}, azimuth_prev_{0.0}, heading_turned_{0.0};
   double earth_sum_{0.0}, transport_sum_{0.0}, compensation_sum_{0.0}, torque_share_{0.0};  // [rad]
+  double bank_sum_{0.0};  // ∫ Ω_left sin φ_b dt [rad]
   double compass_{0.0};
   std::int64_t ticks_{0};
   Window fit_window_;
