@@ -22,7 +22,10 @@ extern const DeviceDescriptor kPlatformAlignment{
         "`sim/scenes/platform-alignment-high-latitude.toml` (75°N: the slow azimuth). Integrator: `rk4`.",
     .figures =
         "Figures: `latitude_rad`, `latitude_limit_rad`, `max_time_s`; `east_gyro_signal_16_52_rad_s` "
-        "(−ω^E cosφ sinψ0); `azimuth_start_s` (measured: the zenith torquer leaves its Earth-rate "
+        "(−ω^E cosφ sinψ0, the book's form at the initial heading error); `east_gyro_rate_at_azimuth_start_rad_s` "
+        "(measured: the Earth's rate on the platform's east axis from the run's attitude when the azimuth phase "
+        "begins, tilts and all) against `east_gyro_rate_at_azimuth_start_rad_s_predicted` ((16.52) at the heading "
+        "error then) with `east_gyro_rate_at_azimuth_start_rel_error`; `azimuth_start_s` (measured: the zenith torquer leaves its Earth-rate "
         "compensation) beside `azimuth_start_predicted_s`, and the misalignment then "
         "(`tilt_east_at_azimuth_start_rad`, `tilt_north_at_azimuth_start_rad`, "
         "`heading_error_at_azimuth_start_rad`); `alignment_time_s` (within `[alignment]` tolerances from then "

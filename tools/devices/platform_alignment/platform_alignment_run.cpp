@@ -81,6 +81,9 @@ class PlatformAlignmentRun {
     if (switch_tick_ < 0 && u != level_command_ && u != 0.0) {  // 0: the safe state's
       switch_tick_ = tick;
       at_switch_ = m_;
+      // What the east gyro senses on the levelled platform as it stands, before the azimuth loop moves it:
+      // the Earth's rate on the platform's east axis P1 from the run's attitude q_GP (tilts included).
+      east_gyro_at_switch_ = plant_.model().earth_rate_on_platform(plant_.state()).x();
     }
     window_.before_tick(tick, plant_.state(), plant_.inputs());
     plant_.advance(tick);
@@ -132,6 +135,12 @@ class PlatformAlignmentRun {
         {"latitude_limit_rad", s_.latitude_limit},
         {"max_time_s", s_.max_time_s},
         {"east_gyro_signal_16_52_rad_s", -we * std::cos(phi) * std::sin(s_.plant.initial.heading_error)},
+        {"east_gyro_rate_at_azimuth_start_rad_s", or_null(switched, east_gyro_at_switch_)},
+        {"east_gyro_rate_at_azimuth_start_rad_s_predicted",
+         or_null(switched, -we * std::cos(phi) * std::sin(at_switch_.heading_error))},
+        {"east_gyro_rate_at_azimuth_start_rel_error",
+         or_null(switched && at_switch_.heading_error != 0.0,
+                 east_gyro_at_switch_ / (-we * std::cos(phi) * std::sin(at_switch_.heading_error)) - 1.0)},
         {"azimuth_start_s", or_null(switched, t_switch)},
         {"azimuth_start_predicted_s", s_.predicted_switch_s},
         {"tilt_east_at_azimuth_start_rad", or_null(switched, at_switch_.tilt_east)},
@@ -196,6 +205,7 @@ class PlatformAlignmentRun {
   double level_command_;
   msg::ActuatorFrame last_{};
   models::PlatformMisalignment m_{}, at_switch_{};
+  double east_gyro_at_switch_{0.0};  // ω_IG · P1 at the azimuth phase's start [rad/s]
   bool in_tolerance_{false};
   std::int64_t last_out_tick_{0}, switch_tick_{-1};
   double ref_t_{-1.0}, ref_d_{0.0}, tau_measured_{-1.0};
