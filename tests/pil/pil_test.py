@@ -65,6 +65,7 @@ SCENES = {
     "coning-p-gyro-planar-vibration": "coning",
     "coning-i-gyro-conical-vibration": "coning",
     "coning-recorded-motion": "coning",
+    "coning-goodman-robinson-sidereal-day": "coning",
     "foucault-declinometer-settling": "foucault_gyro",
     "foucault-inclinometer-settling": "foucault_gyro",
     "position-gyro-platform": "position_gyro_platform",

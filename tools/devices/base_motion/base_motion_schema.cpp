@@ -15,7 +15,7 @@ namespace {
 struct BaseMotionKeys {
   motion::BaseMotionKind kind{motion::BaseMotionKind::kHarmonicRoll};
   double roll_amplitude{0.0}, roll_period_s{10.0}, roll_phase{0.0};
-  double pitch_amplitude{0.0}, pitch_period_s{7.0}, pitch_phase{0.0};
+  double pitch_amplitude{0.0}, pitch_period_s{7.0}, pitch_phase{0.0}, pitch_offset{0.0};
   double yaw_amplitude{0.0}, yaw_period_s{12.0}, yaw_phase{0.0};
   double yaw_rate{0.0};
   double lever_x_m{0.0}, lever_y_m{0.0}, lever_z_m{0.0};
@@ -58,6 +58,13 @@ constexpr schema::Field<K> kFields[] = {
     F::number("motion", "pitch_period_s", "s", Range::closed(0.01, 1e4), "pitch period", GS_NUMBER(pitch_period_s))
         .when(prescribed, "prescribed"),
     F::number("motion", "pitch_phase_deg", "deg", Range::closed(-360.0, 360.0), "pitch phase", GS_NUMBER(pitch_phase))
+        .degrees()
+        .when(prescribed, "prescribed"),
+    F::number("motion", "pitch_deg", "deg", Range::closed(-90.0, 90.0),
+              "constant pitch θ0 of the base: its axis 3 stands θ0 from the world's; with `yaw_rate_deg_s` it runs "
+              "round a cone of half-angle θ0 (a base on the Earth at latitude 90° − θ0, world axis 3 the Earth's "
+              "axis, turning at the sidereal rate: the Goodman–Robinson setting of Magnus (15.35))",
+              GS_NUMBER(pitch_offset))
         .degrees()
         .when(prescribed, "prescribed"),
     F::number("motion", "yaw_amplitude_deg", "deg", Range::closed(0.0, 45.0), "yaw harmonic amplitude",
@@ -142,6 +149,7 @@ void read_base_motion(SceneReader& r, motion::SceneBaseMotion& m, double duratio
   if (prescribed(k)) {
     m.prescribed.roll = angle(k.roll_amplitude, k.roll_period_s, k.roll_phase, 0.0);
     m.prescribed.pitch = angle(k.pitch_amplitude, k.pitch_period_s, k.pitch_phase, 0.0);
+    m.prescribed.pitch.offset = k.pitch_offset;
     m.prescribed.yaw = angle(k.yaw_amplitude, k.yaw_period_s, k.yaw_phase, k.yaw_rate);
     m.prescribed.lever_arm_B = {k.lever_x_m, k.lever_y_m, k.lever_z_m};
   }

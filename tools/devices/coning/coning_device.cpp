@@ -20,7 +20,10 @@ extern const DeviceDescriptor kConing{
         "conical vibration; planar would give none, (15.42)), `sim/scenes/coning-recorded-motion.toml` (the base "
         "driven by a recorded motion, [base motion](#base-motion): `[motion] kind = \"harmonic_roll\"` — the "
         "default — is the [vibration] generator; with `prescribed` or `recorded` the [vibration] keys stay the "
-        "nominal vibration of the step rules and the figures). Integrator: `rk4` (the only one).",
+        "nominal vibration of the step rules and the figures), `sim/scenes/coning-goodman-robinson-sidereal-day.toml` "
+        "(no vibration: the base at 50°N turning with the Earth, `[motion] prescribed` with `pitch_deg` and "
+        "`yaw_rate_deg_s`; the slaved platform turns by −2π sin λ in a sidereal day, (15.35)). Integrator: `rk4` "
+        "(the only one).",
     .figures =
         "Figures, after settle_s over whole vibration periods (rounded to ticks): `drift_rate_rad_s` (the "
         "platform's turn relative to the base: the slope between its azimuth averaged over the first and the "
@@ -34,7 +37,14 @@ extern const DeviceDescriptor kConing{
         "rate about axis 3, = the drift), `gyro_mean_reading_rad_s` (nulled by the loop), `mean_cos_phi`, "
         "`max_abs_beta_rad`, `loop_sensitivity_abs`, `gyro_kind`, `Omega10_input_rad_s`, "
         "`Omega30_spin_rad_s`, `vibration_period_s`, `periods`, `statistics_from_s`, `ticks` (null measurements when fewer than two "
-        "periods completed after settle_s). CSV columns: `phi_rad` (platform azimuth relative to the base), "
+        "periods completed after settle_s; a relative error whose reference is 0 — no vibration — is null). When "
+        "the base's axis 3 runs round a cone (`[motion] kind = \"prescribed\"` with a constant `pitch_deg` ϑ, a "
+        "`yaw_rate_deg_s` ψ' and no harmonic): `goodman_robinson` — the Goodman–Robinson theorem (15.30)-(15.35): "
+        "`turn_rad`, the platform's turn relative to the base over one circuit T = 2π/|ψ'| (the nearest whole "
+        "ticks, `span_s`) from settle_s (`from_s`), against `turn_rad_predicted` = (A − 2πn) span/T, "
+        "`turn_rel_error`, `turn_error_rad`, with `turn_per_circuit_book_rad` = −sgn(ψ') 2π cos ϑ, "
+        "`enclosed_area_sr` A, `cone_half_angle_rad`, `latitude_rad` = 90° − ϑ, `circuit_s` (null measurements "
+        "when the run ends before the circuit). CSV columns: `phi_rad` (platform azimuth relative to the base), "
         "`phi_rate_rad_s`, `platform_rate_rad_s` (absolute, about axis 3), `beta_rad`, `reading` (P (c2/H) β "
         "[rad/s], I (d2/H) β [rad]), `drive_voltage_V`, `status_bits`. report.json `\"limits\"`: "
         "`drive_voltage_limit_V`.",

@@ -38,6 +38,21 @@ struct BlockSums {
   double phi{0.0}, theta{0.0};
 };
 
+// A base whose axis 3 runs round a cone about the world's axis 3 at a constant rate: `prescribed` with a
+// constant pitch, a yaw rate and no harmonic, roll or vibration (the Goodman–Robinson setting).
+struct Cone {
+  bool applies{false};
+  double half_angle{0.0}, yaw_rate{0.0}, period_s{0.0};
+};
+Cone cone_of(const motion::SceneBaseMotion& b) {
+  const auto& p = b.prescribed;
+  if (b.kind != motion::BaseMotionKind::kPrescribed || b.vibration.count > 0 || p.yaw.count > 0 ||
+      p.pitch.count > 0 || p.roll.count > 0 || p.roll.offset != 0.0 || p.roll.rate != 0.0 || p.pitch.rate != 0.0 ||
+      p.yaw.rate == 0.0)
+    return {};
+  return {true, p.pitch.offset, p.yaw.rate, 2.0 * std::numbers::pi / std::fabs(p.yaw.rate)};
+}
+
 class ConingRun {
  public:
   explicit ConingRun(const ConingScene& s)
@@ -46,6 +61,8 @@ class ConingRun {
         settle_tick_(static_cast<std::int64_t>(std::llround(s.settle_s / s.loop.tick_s()))),
         per_(std::max<std::int64_t>(
             1, std::llround(2.0 * std::numbers::pi / (s.plant.platform.frequency * s.loop.tick_s())))),
+        cone_(cone_of(s.plant.base)),
+        circuit_ticks_(cone_.applies ? std::llround(cone_.period_s / s.loop.tick_s()) : 0),
         window_(std::min(settle_tick_, s.loop.ticks() / 2), per_) {}
 
   void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
@@ -58,6 +75,8 @@ class ConingRun {
     plant_.advance(tick);
     window_.after_tick(tick, plant_.state());
     ticks_ = tick + 1;
+    if (ticks_ == settle_tick_) phi_at_settle_ = plant_.phi_rad();
+    if (cone_.applies && ticks_ == settle_tick_ + circuit_ticks_) phi_after_circuit_ = plant_.phi_rad();
     if (ticks_ < settle_tick_) return;
     const double phi = plant_.phi_rad();
     const double g = s_.plant.platform.gyro.gyro.d2 / s_.plant.platform.gyro.gyro.H;
@@ -116,6 +135,7 @@ class ConingRun {
                      {"periods", blocks_},
                      {"statistics_from_s", s_.settle_s},
                      {"ticks", ticks_}};
+    goodman_robinson_figures(f);
     const char* measured[] = {"drift_rate_rad_s",      "drift_predicted_rad_s", "drift_predicted_sampled_rad_s",
                               "drift_rel_error_vs_prediction_sampled", "loop_sensitivity_sampled_abs",
                               "drift_rel_error_vs_book",
@@ -132,13 +152,15 @@ class ConingRun {
         static_cast<double>(s_.loop.latency_ticks) * T / s_.controller.runtime.control_period_s(), nu);
     const double mean_cos = done_cos_ / n;
     const double predicted = -oracles::coning_rate_first_order(m.gyro, O1, O3 * mean_cos, nu, eps, S);
+    // A relative error whose reference is 0 (no vibration, or none the book's form sees) has no value: null.
+    const auto rel = [drift](double ref) { return ref != 0.0 ? nlohmann::json(drift / ref - 1.0) : nlohmann::json(); };
     f["drift_rate_rad_s"] = drift;
     f["drift_predicted_rad_s"] = predicted;
-    f["drift_rel_error_vs_book"] = book != 0.0 ? drift / -book - 1.0 : 0.0;
-    f["drift_rel_error_vs_prediction"] = predicted != 0.0 ? drift / predicted - 1.0 : 0.0;
+    f["drift_rel_error_vs_book"] = rel(-book);
+    f["drift_rel_error_vs_prediction"] = rel(predicted);
     const double predicted_sampled = -oracles::coning_rate_first_order(m.gyro, O1, O3 * mean_cos, nu, eps, S_sampled);
     f["drift_predicted_sampled_rad_s"] = predicted_sampled;
-    f["drift_rel_error_vs_prediction_sampled"] = predicted_sampled != 0.0 ? drift / predicted_sampled - 1.0 : 0.0;
+    f["drift_rel_error_vs_prediction_sampled"] = rel(predicted_sampled);
     f["loop_sensitivity_sampled_abs"] = std::abs(S_sampled);
     f["platform_mean_rate_rad_s"] = done_rate_ / n;
     f["gyro_mean_reading_rad_s"] =
@@ -146,6 +168,33 @@ class ConingRun {
     f["mean_cos_phi"] = mean_cos;
     f["max_abs_beta_rad"] = max_beta_;
     return f;
+  }
+
+  // The Goodman–Robinson theorem, Magnus (15.30)-(15.35): a base whose axis 3 runs round a cone of half-angle
+  // ϑ about the world's axis 3 (prescribed: constant pitch ϑ, constant yaw rate ψ', nothing else) carries the
+  // platform slaved to zero rate about that axis; over one circuit T = 2π/|ψ'| the platform turns relative to
+  // the base by A − 2πn, A = ∮(1 − cos ϑ)dψ = sgn(ψ') 2π(1 − cos ϑ), n = sgn(ψ'): −sgn(ψ') 2π cos ϑ (15.35:
+  // a level platform on the Earth at latitude λ = 90° − ϑ, a sidereal day, −2π sin λ). Measured: φ after
+  // settle_s and one circuit later (the ticks nearest T), against the theorem over the same span.
+  void goodman_robinson_figures(nlohmann::json& f) const {
+    if (!cone_.applies) return;
+    const double span = static_cast<double>(circuit_ticks_) * s_.loop.tick_s();
+    const double per_circuit = -std::copysign(2.0 * std::numbers::pi, cone_.yaw_rate) * std::cos(cone_.half_angle);
+    const double predicted = per_circuit * span / cone_.period_s;
+    const bool measured = settle_tick_ + circuit_ticks_ <= ticks_;
+    const double turn = phi_after_circuit_ - phi_at_settle_;
+    f["goodman_robinson"] = {
+        {"cone_half_angle_rad", cone_.half_angle},
+        {"latitude_rad", std::numbers::pi / 2 - cone_.half_angle},
+        {"circuit_s", cone_.period_s},
+        {"enclosed_area_sr", std::copysign(2.0 * std::numbers::pi, cone_.yaw_rate) * (1.0 - std::cos(cone_.half_angle))},
+        {"turn_per_circuit_book_rad", per_circuit},
+        {"span_s", span},
+        {"from_s", static_cast<double>(settle_tick_) * s_.loop.tick_s()},
+        {"turn_rad_predicted", predicted},
+        {"turn_rad", measured ? nlohmann::json(turn) : nlohmann::json()},
+        {"turn_rel_error", measured && predicted != 0.0 ? nlohmann::json(turn / predicted - 1.0) : nlohmann::json()},
+        {"turn_error_rad", measured ? nlohmann::json(turn - predicted) : nlohmann::json()}};
   }
 
   // report.json "error_estimate": one vibration period from the end of settling.
@@ -168,6 +217,9 @@ class ConingRun {
   double run_cos_{0.0}, run_rate_{0.0}, run_reading_{0.0};     // over all samples so far
   double done_cos_{0.0}, done_rate_{0.0}, done_reading_{0.0};  // at the last completed period
   double max_beta_{0.0};
+  Cone cone_;
+  std::int64_t circuit_ticks_{0};
+  double phi_at_settle_{0.0}, phi_after_circuit_{0.0};
   std::int64_t ticks_{0};
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
 };
