@@ -4,7 +4,7 @@
 Checks, each with `gyrostab run SCENE --transport target` (the image of BUILD/arm/m7, -icount shift=0):
   1. every image boots, takes its scene's configuration and steps in lockstep: a short run of every shipped
      scene of a device with a firmware controller gives a signals.csv identical byte for byte to the
-     in-process run of the same scene and seed (40 scenes, 18 images);
+     in-process run of the same scene and seed (42 scenes, 18 images);
   2. two whole scenes on the target are bit-identical to in process: the monorail (60 000 ticks) and the power
      stabilizer with DC drives (100 000 ticks, current loops at 10 kHz);
   3. the board's UART carries the same frames (--target-link uart): identical for 300 ticks;
@@ -73,6 +73,7 @@ SCENES = {
     "cmg-cluster-singularity-pseudo-inverse": "cmg_cluster",
     "cmg-cluster-singularity-robust": "cmg_cluster",
     "cmg-cluster-singularity-generalized": "cmg_cluster",
+    "cmg-cluster-envelope-x": "cmg_cluster",
     "platform-alignment-aircraft": "platform_alignment",
     "platform-alignment-high-latitude": "platform_alignment",
     "bauersfeld-compass-ship": "bauersfeld_compass",

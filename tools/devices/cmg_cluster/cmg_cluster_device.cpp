@@ -20,7 +20,9 @@ extern const DeviceDescriptor kCmgCluster{
         "`sim/scenes/cmg-cluster-singularity-robust.toml` (a 60° slew about x whose momentum demand crosses the "
         "pyramid's internal singularity at 2h cosβ: the pseudo-inverse stalls there, the robust inverse passes), "
         "`sim/scenes/cmg-cluster-singularity-generalized.toml` (the same with the gyro noise off: only the "
-        "generalized inverse passes). "
+        "generalized inverse passes), `sim/scenes/cmg-cluster-envelope-x.toml` (a 180° slew about x that asks for "
+        "more momentum than the cluster holds: it saturates at the envelope 2h(1 + cosβ) along −x and the slew "
+        "completes). "
         "Integrator: `rk4` (the only one).",
     .figures =
         "Figures: the attitude pair about the slew axis (a principal axis; docs/sampled-data.md) as natural "
@@ -38,7 +40,10 @@ extern const DeviceDescriptor kCmgCluster{
         "`near_singular_time_s` (measure below `near_singular_measure`); `rate_limited_ticks` (gimbal rates scaled "
         "to max_gimbal_rate) and `singular_ticks` (the pseudo-inverse refused to invert); "
         "`peak_cmg_momentum_Nms` against `envelope_along_slew_axis_Nms` and `envelope_x/y/z_Nms` (h Σ sqrt(1 − "
-        "(e·g_i)²)) and `pyramid_internal_singularity_Nms` = 2h cosβ (the pyramid's; null for explicit axes); `peak_body_rate_rad_s`, `peak_gimbal_rate_rad_s`, `peak_gimbal_motor_torque_Nm`; "
+        "(e·g_i)²)) and `pyramid_internal_singularity_Nms` = 2h cosβ (the pyramid's; null for explicit axes); "
+        "`peak_cmg_momentum_along_slew_axis_Nms` (max |H_cmg·e|) against `envelope_along_slew_axis_closed_form_Nms` "
+        "(the pyramid along a principal axis: 2h(1 + cosβ) along x or y, 4h sinβ along z; null otherwise) with "
+        "`envelope_reached_rel_error`; `peak_body_rate_rad_s`, `peak_gimbal_rate_rad_s`, `peak_gimbal_motor_torque_Nm`; "
         "`momentum_drift_Nms` = max |L_W(t) − L_W(0)| (the inertial angular momentum, conserved); `steering`, "
         "`slew_deg`, `ticks`. CSV columns: `attitude_error_deg`, `omega_x/y/z_rad_s`, `H_cmg_x/y/z_Nms`, "
         "`delta_1..4_rad`, `singularity_measure`, `status_bits`. report.json `\"limits\"`: "

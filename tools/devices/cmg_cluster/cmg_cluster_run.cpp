@@ -48,7 +48,8 @@ class CmgClusterRun {
         reference_(reference_of(s)),
         L0_(plant_.momentum_world()),
         window_(s.loop.ticks() / 2, std::min<std::int64_t>(s.loop.ticks() / 4, static_cast<std::int64_t>(1.0 / s.loop.tick_s()))),
-        axis_(principal_slew_axis(s)) {
+        axis_(principal_slew_axis(s)),
+        slew_axis_(dynamics::Vec3(s.slew_axis_x, s.slew_axis_y, s.slew_axis_z).normalized()) {
     if (axis_ >= 0) approach_.reserve(static_cast<std::size_t>(std::min<std::int64_t>(s.loop.ticks(), 10'000'000)) + 1);
     error_ = attitude_error_rad();
     min_measure_ = plant_.singularity_measure();
@@ -91,6 +92,9 @@ class CmgClusterRun {
     }
     if (m < s_.near_singular_measure) near_singular_ticks_ += 1;
     peak_H_ = std::max(peak_H_, plant_.cmg_momentum_body().norm());
+    // The cluster's momentum along the slew axis, in magnitude: from rest the spacecraft's J ω is −H_cmg, so
+    // a slew about +e drives H_cmg along −e.
+    peak_H_along_ = std::max(peak_H_along_, std::fabs(plant_.cmg_momentum_body().dot(slew_axis_)));
     peak_rate_ = std::max(peak_rate_, plant_.body_rate().norm());
     for (int i = 0; i < s_.plant.model.geometry.count; ++i) {
       peak_gimbal_rate_ = std::max(peak_gimbal_rate_, std::fabs(plant_.gimbal_rate(i)));
@@ -139,6 +143,12 @@ class CmgClusterRun {
             {"singular_ticks", singular_ticks_},
             {"peak_cmg_momentum_Nms", peak_H_},
             {"envelope_along_slew_axis_Nms", h * g.envelope_extent(axis)},
+            {"peak_cmg_momentum_along_slew_axis_Nms", peak_H_along_},
+            {"envelope_along_slew_axis_closed_form_Nms", envelope_closed_form(axis)},
+            {"envelope_reached_rel_error",
+             envelope_closed_form(axis).is_number()
+                 ? nlohmann::json(peak_H_along_ / envelope_closed_form(axis).get<double>() - 1.0)
+                 : nlohmann::json(nullptr)},
             {"pyramid_internal_singularity_Nms",
              s_.gimbal_axes.empty() ? nlohmann::json(2.0 * h * std::cos(s_.skew_rad)) : nlohmann::json(nullptr)},
             {"envelope_x_Nms", h * g.envelope_extent(dynamics::Vec3::UnitX())},
@@ -151,6 +161,18 @@ class CmgClusterRun {
             {"ticks", ticks_}};
     attitude_loop_figures(f);
     return f;
+  }
+
+  // The pyramid's envelope along a principal direction, docs/models/cmg-cluster.md#momentum-envelope: along
+  // x or y 2h(1 + cos β) (two CMGs at sin β from the direction, two across it), along z 4h sin β; null for
+  // another direction or a cluster given by its axes.
+  nlohmann::json envelope_closed_form(const dynamics::Vec3& e) const {
+    if (!s_.gimbal_axes.empty()) return nullptr;
+    const double h = s_.plant.model.h, b = s_.skew_rad;
+    const dynamics::Vec3 a = e.cwiseAbs();
+    if (a.x() == 1.0 || a.y() == 1.0) return 2.0 * h * (1.0 + std::cos(b));
+    if (a.z() == 1.0) return 4.0 * h * std::sin(b);
+    return nullptr;
   }
 
   // report.json "error_estimate": up to 1 s from the middle of the run.
@@ -272,9 +294,11 @@ class CmgClusterRun {
   double last_outside_s_{0.0};
   double min_measure_{0.0}, min_measure_s_{0.0};
   std::int64_t near_singular_ticks_{0}, rate_limited_ticks_{0}, singular_ticks_{0}, ticks_{0};
+  double peak_H_along_{0.0};  // max |H_cmg · e| over the run [N m s]
   double peak_H_{0.0}, peak_rate_{0.0}, peak_gimbal_rate_{0.0}, peak_motor_torque_{0.0}, drift_{0.0};
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
   int axis_;
+  dynamics::Vec3 slew_axis_;  // unit
   std::vector<ApproachSample> approach_;
   std::int64_t approach_start_{-1};
   double approach_from_s_{0.0};
