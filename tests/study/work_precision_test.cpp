@@ -59,8 +59,15 @@ TEST(WorkPrecision, SpeedUpComparesTheBestOfEachFamilyAtEqualError) {
   // At 1e-6: ours fast: 1·4^(1/2) = 2 s/s; peer A 20 s/s.
   const SpeedUp b = speed_up_at(s, 0, 1e-6);
   EXPECT_NEAR(b.ratio, 10.0, 1e-12);
-  // At 1e-7 no peer reaches: undefined, said so.
-  EXPECT_TRUE(std::isnan(speed_up_at(s, 0, 1e-7).ratio));
+  // At 1e-7 no peer reaches: undefined as a ratio, bounded below by the peers' most accurate run (peerA at
+  // 1e-6, 20 s/s; peerB's 1e-6 costs 300) against ours at 1e-7 (fast: 1·4^(3/4) = 2.83 s/s).
+  const SpeedUp c = speed_up_at(s, 0, 1e-7);
+  EXPECT_TRUE(std::isnan(c.ratio));
+  EXPECT_EQ(c.peer_best_method, "peerA");
+  EXPECT_NEAR(c.peer_best_error, 1e-6, 1e-20);
+  EXPECT_NEAR(c.peer_best_time, 20.0, 1e-12);
+  EXPECT_NEAR(c.ratio_at_least, 20.0 / std::pow(4.0, 0.75), 1e-12);
+  EXPECT_TRUE(std::isnan(b.ratio_at_least)) << "a peer reaches 1e-6: a ratio, no bound";
   // Decade levels both families reach: 1e-6 … 1e-2.
   const std::vector<double> levels = comparison_levels(s, 0);
   ASSERT_EQ(levels.size(), 5u);

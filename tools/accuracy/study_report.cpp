@@ -31,7 +31,9 @@ constexpr const char* kHowSpeedUp =
     "bracketing e, the cheapest time if the cheapest run already meets e, undefined below the most accurate run "
     "(no extrapolation); best of a family = least T_m(e); speed-up(e) = T_best peer(e) / T_best ours(e). The "
     "headline is at e = the error of the scene's own integrator and step (the floor if it lies below it); its "
-    "spread is over the repeats (each repeat's own times)";
+    "spread is over the repeats (each repeat's own times). Where no peer run reaches e the ratio is null and "
+    "ratio_at_least = T(the peers' most accurate run) / T_best ours(e) bounds it from below (a peer would need a "
+    "setting tighter than any tried, which costs at least that)";
 constexpr const char* kHowPeers =
     "inputs switch at every tick (zero-order hold): odeint-rk4 steps on the tick grid; odeint-dopri5 is reset() "
     "at every tick and its last step cut to the tick boundary (step size carried over); CVODE is restarted with "
@@ -60,8 +62,12 @@ const RunResult* scene_run(const StudyResult& s) {
 // The speed-up at `error` for quantity q: median-time figure plus one per repeat.
 nlohmann::json speed_up_json(const StudyResult& s, std::size_t q, double error) {
   const SpeedUp m = speed_up_at(s, q, error);
-  std::vector<double> per_repeat;
-  for (int r = 0; r < s.repeats; ++r) per_repeat.push_back(speed_up_at(s, q, error, r).ratio);
+  std::vector<double> per_repeat, bound_per_repeat;
+  for (int r = 0; r < s.repeats; ++r) {
+    const SpeedUp x = speed_up_at(s, q, error, r);
+    per_repeat.push_back(x.ratio);
+    bound_per_repeat.push_back(x.ratio_at_least);
+  }
   nlohmann::json j{{"error", error},
                    {"ours_method", m.ours_method},
                    {"peer_method", m.peer_method},
@@ -74,7 +80,22 @@ nlohmann::json speed_up_json(const StudyResult& s, std::size_t q, double error) 
   nlohmann::json reps = nlohmann::json::array();
   for (double x : per_repeat) reps.push_back(number_or_null(x));
   j["ratio_per_repeat"] = reps;
-  if (!std::isfinite(m.peer_time)) j["note"] = "no peer run reaches this error";
+  j["peer_best_error"] = number_or_null(m.peer_best_error);
+  j["peer_best_method"] = m.peer_best_method;
+  j["peer_best_s_per_simulated_s"] = number_or_null(m.peer_best_time);
+  if (!std::isfinite(m.peer_time)) {
+    // Undefined as a ratio, bounded below: a peer would have to go past its most accurate run.
+    j["ratio_at_least"] = number_or_null(m.ratio_at_least);
+    j["ratio_at_least_min"] = number_or_null(quantile(bound_per_repeat, 0.0));
+    j["ratio_at_least_median"] = number_or_null(quantile(bound_per_repeat, 0.5));
+    j["ratio_at_least_max"] = number_or_null(quantile(bound_per_repeat, 1.0));
+    char b[240];
+    std::snprintf(b, sizeof b,
+                  "no peer run reaches this error: the speed-up is at least %.3g× (the peers' most accurate run, "
+                  "%s, errs %.3g at %.3g s per simulated s)",
+                  m.ratio_at_least, m.peer_best_method.c_str(), m.peer_best_error, m.peer_best_time);
+    j["note"] = std::isfinite(m.ratio_at_least) ? std::string(b) : std::string("no peer run reaches this error");
+  }
   if (!std::isfinite(m.ours_time)) j["note"] = "none of our runs reaches this error";
   return j;
 }

@@ -79,12 +79,27 @@ SpeedUp speed_up_at(const StudyResult& s, std::size_t q, double error, int repea
   SpeedUp out;
   out.error = error;
   const Best ours = best_at(method_fronts(s, q, Family::kOurs, repeat), error);
-  const Best peer = best_at(method_fronts(s, q, Family::kPeer, repeat), error);
+  const auto peer_fronts = method_fronts(s, q, Family::kPeer, repeat);
+  const Best peer = best_at(peer_fronts, error);
+  out.peer_best_error = kNaN;
+  out.peer_best_time = kNaN;
+  for (const auto& [name, front] : peer_fronts) {
+    if (front.empty()) continue;
+    const WorkPoint& p = front.back();  // the method's most accurate point
+    if (!(p.error >= out.peer_best_error)) {
+      out.peer_best_error = p.error;
+      out.peer_best_time = p.time;
+      out.peer_best_method = name;
+    }
+  }
   out.ours_time = ours.time;
   out.peer_time = peer.time;
   out.ours_method = ours.method;
   out.peer_method = peer.method;
   out.ratio = std::isfinite(ours.time) && std::isfinite(peer.time) ? peer.time / ours.time : kNaN;
+  out.ratio_at_least = std::isfinite(ours.time) && !std::isfinite(peer.time) && std::isfinite(out.peer_best_time)
+                           ? out.peer_best_time / ours.time
+                           : kNaN;
   return out;
 }
 

@@ -41,6 +41,13 @@ struct SpeedUp {
   double ours_time{0.0}, peer_time{0.0};  // [s per simulated s]; NaN if the family cannot reach `error`
   double ratio{0.0};                      // peer_time / ours_time; NaN if either is undefined
   std::string ours_method, peer_method;   // best of each family at `error`
+  // The peers' most accurate run (least error over every peer front) and its time; when no peer run reaches
+  // `error` the speed-up is reported as a bound, ratio_at_least = its time / ours_time: a peer would need a
+  // tighter setting than its most accurate one, which costs at least as much (the fronts' time grows with
+  // accuracy over the settings tried). NaN when undefined (a peer reaches `error`, or ours does not).
+  double peer_best_error{0.0}, peer_best_time{0.0};
+  std::string peer_best_method;
+  double ratio_at_least{0.0};
 };
 
 // The speed-up at `error` for quantity q; repeat < 0 uses the median time, else that repeat's time.
