@@ -86,13 +86,25 @@ std::string refused_hint(const Endpoint& ep) {
 // The exit code of a process whose loop completed: 0, or kExitForeignFrames when the link carried frames that
 // were not this session's or failed its authentication — the results stand (none was acted on), but the link
 // was shared, replayed onto or attacked, and the exit code says so (with one line on stderr).
-inline int completed_exit_code(const char* role, const std::string& scene_name, const hil::LinkGuard& g) {
+// `peer_refused`: the frames the other end of the link refused for the same causes and reported back (the
+// controller image on the target link counts them itself: report.json link.target.image_refused.foreign); they
+// reach the exit code as the host's own refusals do.
+inline int completed_exit_code(const char* role, const std::string& scene_name, const hil::LinkGuard& g,
+                               std::uint64_t peer_refused = 0) {
   const std::uint64_t refused = g.counters().rejected();
-  if (refused == 0) return 0;
-  std::fprintf(stderr,
-               "gyrostab %s: %s: completed, but %llu frames on the link were not this session's or failed its "
-               "authentication (report.json link.session.refused); none was acted on\n",
-               role, scene_name.c_str(), static_cast<unsigned long long>(refused));
+  if (refused == 0 && peer_refused == 0) return 0;
+  if (refused > 0) {
+    std::fprintf(stderr,
+                 "gyrostab %s: %s: completed, but %llu frames on the link were not this session's or failed its "
+                 "authentication (report.json link.session.refused); none was acted on\n",
+                 role, scene_name.c_str(), static_cast<unsigned long long>(refused));
+  }
+  if (peer_refused > 0) {
+    std::fprintf(stderr,
+                 "gyrostab %s: %s: completed, but the controller image refused %llu frames that were not this "
+                 "session's (report.json link.target.image_refused.foreign); none was acted on\n",
+                 role, scene_name.c_str(), static_cast<unsigned long long>(peer_refused));
+  }
   return kExitForeignFrames;
 }
 

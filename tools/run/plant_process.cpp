@@ -314,7 +314,11 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
                  describe_non_finite(loop.name, outcome.diverged_tick, outcome.diverged_state).c_str());
     return 3;
   }
-  return completed_exit_code("plant", loop.name, ep.guard());
+  std::uint64_t image_refused = 0;
+  if constexpr (std::is_same_v<Transport, hil::TargetBus>) {
+    if (transport.have_profile) image_refused = transport.profile.rx.foreign;
+  }
+  return completed_exit_code("plant", loop.name, ep.guard(), image_refused);
 }
 
 }  // namespace
