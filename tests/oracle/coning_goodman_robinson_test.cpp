@@ -4,10 +4,11 @@
 // round a cone of half-angle 40° about the Earth's axis in a sidereal day), the platform slaved to zero rate
 // about that vertical through an I-gyro; over one circuit it turns relative to the Earth by A − 2π = −2π sin λ.
 // Measured from the platform's azimuth one circuit (86 164 ticks of 1 s) after settle_s.
-// Tolerance 4e-6 relative: the I-gyro's effective input axis, tilted by its β ≈ (B/d2)·(the output-axis rate
-// of the turning platform), picks up the horizontal Earth rate (Ω_h β ≈ 0.1 s × (4.7e-5 rad/s)² ≤ 2.2e-10
-// rad/s: 1.9e-5 rad over the day, 4e-6 of the turn); the loop's transient is 1e-20 of its start after 2000 s;
-// RK4 at h × d2/B = 0.5 on a mode the loop holds still. Measured 1.1e-7.
+// Tolerance 8e-6 relative: the I-gyro's effective input axis, tilted by its β ≈ (B/d2)·(the output-axis rate
+// of the turning platform), picks up the horizontal Earth rate (Ω_h β ≈ 0.2 s × (4.7e-5 rad/s)² ≤ 4.4e-10
+// rad/s: 3.8e-5 rad over the day, 8e-6 of the turn); the loop's transient is 1e-20 of its start after 2000 s;
+// RK4 at h × d2/B = 0.5 on a mode the loop holds still. Measured 2.1e-7 (1.1e-7 with B/d2 = 0.1 s: the error
+// follows B/d2, as the coupling does).
 // And a relative error whose reference is 0 is null: the scene has no vibration, so the book's coning rate
 // is 0 and drift_rel_error_vs_book has no value (it was reported as 0.0).
 #include "tests/support/scene_run.hpp"
@@ -37,7 +38,7 @@ TEST(ConingGoodmanRobinson, ASiderealDayTurnsTheSlavedPlatformByMinus2PiSinLatit
   EXPECT_NEAR(g["turn_per_circuit_book_rad"].get<double>(), -2.0 * std::numbers::pi * std::sin(lat), 1e-12);
   EXPECT_NEAR(g["enclosed_area_sr"].get<double>(), 2.0 * std::numbers::pi * (1.0 - std::sin(lat)), 1e-12);
   EXPECT_NEAR(g["circuit_s"].get<double>(), 86164.1, 0.05);  // a sidereal day (the scene's rate, 12 digits)
-  EXPECT_LT(std::fabs(g["turn_rel_error"].get<double>()), 4e-6);
+  EXPECT_LT(std::fabs(g["turn_rel_error"].get<double>()), 8e-6);
   EXPECT_TRUE(f["drift_rel_error_vs_book"].is_null()) << f["drift_rel_error_vs_book"];
   EXPECT_TRUE(f["drift_rel_error_vs_prediction"].is_null());
   EXPECT_NEAR(f["coning_rate_book_rad_s"].get<double>(), 0.0, 0.0);
