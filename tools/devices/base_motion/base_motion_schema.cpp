@@ -39,7 +39,7 @@ constexpr schema::Field<K> kFields[] = {
     F::choice("motion", "kind", kKinds,
               "what moves the base: `harmonic_roll` (the device's own generator: power_stabilizer's [base], "
               "coning's [vibration], gimbal_error's [yaw], [pitch], [roll]), `prescribed` (yaw, pitch, roll "
-              "each with one harmonic, a yaw rate, a lever arm: sim/motion/prescribed_base_rotation.hpp) or "
+              "each with one harmonic, a yaw rate, a constant pitch, a lever arm: sim/motion/prescribed_base_rotation.hpp) or "
               "`recorded` (a motion file)",
               GS_CHOICE(kind)),
     F::number("motion", "roll_amplitude_deg", "deg", Range::closed(0.0, 45.0), "roll harmonic amplitude",
