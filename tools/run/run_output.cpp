@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "tools/run/output_dir.hpp"
+#include "tools/run/run_mcap.hpp"
 
 namespace gyrostab::tools {
 
@@ -63,6 +64,11 @@ bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recor
   if (!out.commit(written, error)) return false;
   if (req.role != Role::kController) {
     std::printf("%s: wrote %s in %s\n", req.scene_path.c_str(), list_names(written).c_str(), req.out_dir.c_str());
+  }
+  // After the directory's outputs are in place, so a failure here loses none of them.
+  if (!req.mcap_path.empty() && req.role != Role::kController) {
+    if (!write_run_mcap(req.mcap_path, cfg, rec, report, {}, error)) return false;
+    std::printf("%s: wrote %s\n", req.scene_path.c_str(), req.mcap_path.c_str());
   }
   return true;
 }
