@@ -7,8 +7,8 @@
 
 namespace gyrostab::tools {
 
-PlantTick::PlantTick(PlantPort& plant, const LoopConfig& cfg, Recorder* recorder)
-    : plant_(plant), cfg_(cfg), recorder_(recorder), applied_(plant.initial_command()) {}
+PlantTick::PlantTick(PlantPort& plant, const LoopConfig& cfg, Recorder* recorder, RowSink* rows)
+    : plant_(plant), cfg_(cfg), recorder_(recorder), rows_(rows), applied_(plant.initial_command()) {}
 
 bool PlantTick::step(std::int64_t k, const msg::ActuatorFrame& command, LoopOutcome& out) {
   const int latency = cfg_.latency_ticks;
@@ -25,16 +25,19 @@ bool PlantTick::step(std::int64_t k, const msg::ActuatorFrame& command, LoopOutc
     return false;
   }
   if (recorder_ && recorder_->due(k + 1)) {
-    if (double* row = recorder_->row(static_cast<double>(k + 1) * cfg_.tick_s())) plant_.record(row);
+    if (double* row = recorder_->row(static_cast<double>(k + 1) * cfg_.tick_s())) {
+      plant_.record(row);
+      if (rows_ != nullptr) rows_->row(k + 1, recorder_->last_row());
+    }
   }
   return true;
 }
 
 LoopOutcome run_closed_loop(PlantPort& plant, ControllerPort& controller, const LoopConfig& cfg, Recorder* recorder,
-                            bool progress, TickSink* sink) {
+                            bool progress, TickSink* sink, RowSink* rows) {
   LoopOutcome out;
   const std::int64_t ticks = cfg.ticks();
-  PlantTick tick(plant, cfg, recorder);
+  PlantTick tick(plant, cfg, recorder, rows);
   msg::SensorFrame sensor{};
   msg::ActuatorFrame command{};
   const auto start = std::chrono::steady_clock::now();
