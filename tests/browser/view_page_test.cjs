@@ -7,7 +7,9 @@
 // buckets and the first points of every chart against signals.csv's rows (the same min/max per bucket, exact);
 // the limits drawn on the precession and torque charts; the status panel; the figures table against
 // report.json; and that a wrong token (page and WebSocket) and a foreign Origin (a page of another origin
-// opening the WebSocket with the right token) are refused. Writes WORKDIR/view.png (docs/view.png is one).
+// opening the WebSocket with the right token) are refused. Then `gyrostab sweep --view` on a 12-task study of
+// the same ship (3 s a task): the page's heat maps fill and, once merged, show each cell's mean roll reduction
+// as results/<variant>/cells.csv has it. Writes WORKDIR/view.png and WORKDIR/sweep.png (docs/ has both).
 "use strict";
 const { spawn } = require("child_process");
 const fs = require("fs");
@@ -20,16 +22,17 @@ function check(cond, what) {
   if (!cond) failures.push(what);
 }
 
-function startRun(gyrostab, scene, out) {
-  const p = spawn(gyrostab, ["run", scene, "--no-progress", "--out", out, "--view", "--view-wait", "30",
-                             "--view-linger", "120"],
-                  { env: { ...process.env, GYROSTAB_PLOT_SCRIPT: "" }, stdio: ["ignore", "pipe", "pipe"] });
+function startRun(gyrostab, scene, out, args) {
+  const p = spawn(gyrostab, args || ["run", scene, "--no-progress", "--out", out, "--view", "--view-wait", "30",
+                                     "--view-linger", "120"],
+                  { env: { ...process.env, GYROSTAB_PLOT_SCRIPT: "", GYROSTAB_SWEEP_PLOT_SCRIPT: "" },
+                    stdio: ["ignore", "pipe", "pipe"] });
   return new Promise((resolve, reject) => {
     let err = "";
     const timer = setTimeout(() => reject(new Error("no URL printed: " + err)), 30000);
     p.stderr.on("data", (d) => {
       err += d.toString();
-      const m = err.match(/live view of \S+ at (\S+)/);
+      const m = err.match(/live view (?:of \S+ )?at (\S+)/);
       if (m) { clearTimeout(timer); resolve({ proc: p, url: m[1] }); }
     });
     p.on("exit", (code) => reject(new Error(`gyrostab exited ${code}: ${err}`)));
@@ -138,9 +141,13 @@ async function main() {
     check(limitsOf.precession_torque_Nm === "precession_torque_limit_Nm", "the torque chart draws the torque limit");
     check(view.safe === "running" && view.status.includes("status word"), `the status panel: ${view.safe}`);
     const figures = Object.fromEntries(view.figureRows.map((r) => [r[0], r]));
-    const withPrediction = Object.keys(report.figures).filter((k) => report.figures[k + "_predicted"] !== undefined);
-    check(withPrediction.length > 0 && withPrediction.every((k) => figures[k] && figures[k][2] !== "—"),
-          `the figures table shows ${withPrediction.length} figures beside their predictions`);
+    const measured = Object.keys(report.figures).filter(
+      (k) => !/_predicted(_sampled)?$/.test(k) && typeof report.figures[k] !== "object");
+    const withPrediction = measured.filter((k) => report.figures[k + "_predicted"] !== undefined);
+    check(measured.length > 0 && measured.every((k) => figures[k]),
+          `the figures table has a row for each of report.json's ${measured.length} figures`);
+    check(withPrediction.every((k) => figures[k][2] !== "—"),
+          `the ${withPrediction.length} figures with a prediction show it beside the measured value`);
 
     // A wrong token: the page is refused, and so is a WebSocket from the right page with a wrong token.
     const base = url.split("/?token=")[0];
@@ -161,12 +168,75 @@ async function main() {
     const other = await browser.newPage();
     await other.goto("data:text/html,<title>other origin</title>");
     check(await wsResult(other, wsBase + "/ws?token=" + token) === "refused", "a foreign Origin: the WebSocket is refused");
+    proc.kill("SIGTERM");
+    const code = await exited;
+    check(code === 0, `gyrostab exits 0 after SIGTERM (${code})`);
+
+    // The sweep's view.
+    const studyFile = path.join(work, "study.toml");
+    fs.writeFileSync(studyFile, `[study]
+name = "browser-test"
+scene = "${scene}"
+seed = 7
+seeds_per_cell = 2
+duration_s = 3
+settle_s = 1
+[[sea_state]]
+Hs = 1.5
+Tp = 8.0
+probability = 0.5
+[[sea_state]]
+Hs = 2.5
+Tp = 10.0
+probability = 0.3
+[[sea_state]]
+Hs = 3.5
+Tp = 9.0
+probability = 0.2
+[[variant]]
+name = "H-1.018e6"
+set = { "gyro.H" = 1.018e6 }
+[[variant]]
+name = "H-0.7e6"
+set = { "gyro.H" = 0.7e6, "controller.roll_rate_gain" = 0.7e6 }
+`);
+    const sweepDir = path.join(work, "sweep");
+    const sweep = await startRun(gyrostab, null, null, ["sweep", studyFile, "--out", sweepDir, "--jobs", "2", "--quiet",
+                                                         "--view", "--view-linger", "120"]);
+    const sweepExited = new Promise((resolve) => sweep.proc.on("exit", (c) => resolve(c)));
+    const sp = await browser.newPage();
+    await sp.setViewport({ width: 1000, height: 800 });
+    await sp.goto(sweep.url);
+    await sp.waitForFunction(() => window.gyrostabSweep && window.gyrostabSweep.ended, { timeout: 120000 });
+    await new Promise((r) => setTimeout(r, 200));
+    const cells = await sp.evaluate(() => [...document.querySelectorAll(".heat")].map((box) => ({
+      title: box.querySelector("h2").textContent,
+      cells: [...box.querySelectorAll("td")].filter((td) => td.dataset.cell !== "-1")
+        .map((td) => [Number(td.dataset.cell), td.textContent]),
+    })));
+    await sp.screenshot({ path: path.join(work, "sweep.png"), fullPage: true });
+    check(cells.length === 2, `a heat map per variant (${cells.length})`);
+    let sweepBad = "";
+    for (const [v, name] of [[0, "H-1.018e6"], [1, "H-0.7e6"]]) {
+      const text = fs.readFileSync(path.join(sweepDir, "results", name, "cells.csv"), "utf8").trim().split("\n");
+      const cols = text[0].split(",");
+      const rr = cols.indexOf("roll_reduction"), hsCol = cols.indexOf("Hs_m"), tpCol = cols.indexOf("Tp_s");
+      for (const line of text.slice(1)) {
+        const f = line.split(",");
+        const want = Number(f[rr]).toFixed(2) + " (2/2)";
+        const c = [[1.5, 8], [2.5, 10], [3.5, 9]].findIndex(([h, t]) => h === Number(f[hsCol]) && t === Number(f[tpCol]));
+        const got = cells[v] && cells[v].cells.find(([i]) => i === c);
+        if (!got || got[1] !== want) sweepBad = `${name} cell ${c}: page ${got && got[1]} vs cells.csv ${want}`;
+      }
+    }
+    check(sweepBad === "", "every heat-map cell shows cells.csv's mean roll reduction, 2 of 2 tasks in" +
+                           (sweepBad ? ": " + sweepBad : ""));
+    sweep.proc.kill("SIGTERM");
+    check(await sweepExited === 0, "the sweep exits 0 after SIGTERM");
   } finally {
     await browser.close();
     proc.kill("SIGTERM");
   }
-  const code = await exited;
-  check(code === 0, `gyrostab exits 0 after SIGTERM (${code})`);
   const seconds = ((Date.now() - t0) / 1000).toFixed(1);
   console.log(`${failures.length === 0 ? "all checks passed" : failures.length + " checks failed"} in ${seconds} s; ` +
               `screenshot ${path.join(work, "view.png")}`);

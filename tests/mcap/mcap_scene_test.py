@@ -1,24 +1,28 @@
 #!/usr/bin/env python3
 """ctest label `mcap`: one shipped scene run with --mcap, read back by an independent reader.
 
-  mcap_scene_test.py GYROSTAB SCENE WORKDIR NODE_MODULES
+  mcap_scene_test.py GYROSTAB SCENE WORKDIR NODE_MODULES [--lcm]
 
 Runs `gyrostab run SCENE --ticks N --mcap WORKDIR/run.mcap` (N = the scene's own ticks, at most 100 000, so the
 label stays within minutes), then tests/mcap/mcap_readback.cjs (Foxglove's @mcap/core under Debian's node) reads
 every message back, through the indexes and record by record with every CRC checked, and compares each value
 with signals.csv and the report message with report.json. Exit 77 (skip) when node or @mcap/core is missing
-(tools/setup installs both)."""
+(tools/setup installs both). With --lcm: plant and controller as two processes over LCM, in a private network
+namespace (unshare -n, loopback multicast; exit 77 where that is not permitted), with --view too: the file is
+written from the plant's signals.csv and the merged report."""
 import os
 import shutil
 import subprocess
 import sys
 import tomllib
 
-MAX_TICKS = 100_000
+# GYROSTAB_MCAP_MAX_TICKS=0 runs every scene to its full duration (docs/mcap.md gives that run's time).
+MAX_TICKS = int(os.environ.get("GYROSTAB_MCAP_MAX_TICKS", "100000"))
 
 
 def main():
     gyrostab, scene, work, node_modules = sys.argv[1:5]
+    lcm = "--lcm" in sys.argv[5:]
     node = shutil.which("node")
     if node is None or not os.path.isdir(os.path.join(node_modules, "@mcap", "core")):
         print("skip: node or @mcap/core missing (tools/setup installs them)")
@@ -27,13 +31,22 @@ def main():
         s = tomllib.load(f)
     tick_ns = int(round(float(s.get("loop", {}).get("tick_us", 1000)) * 1000))
     ticks = int(round(float(s["scene"]["duration_s"]) * 1e9 / tick_ns))
-    ticks = min(ticks, MAX_TICKS)
+    if MAX_TICKS > 0:
+        ticks = min(ticks, MAX_TICKS)
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     out, mcap = os.path.join(work, "out"), os.path.join(work, "run.mcap")
     env = dict(os.environ, GYROSTAB_PLOT_SCRIPT="")
-    r = subprocess.run([gyrostab, "run", scene, "--no-progress", "--ticks", str(ticks), "--out", out, "--mcap", mcap],
-                       env=env, capture_output=True, text=True, timeout=600)
+    cmd = [gyrostab, "run", scene, "--no-progress", "--ticks", str(ticks), "--out", out, "--mcap", mcap]
+    if lcm:
+        cmd = ["unshare", "-n", "--", "sh", "-c", "ip link set lo up && ip link set lo multicast on && "
+               "ip route add 224.0.0.0/4 dev lo && exec \"$@\"", "sh", *cmd, "--transport", "lcm", "--view",
+               "--view-linger", "0"]
+        probe = subprocess.run(["unshare", "-n", "true"], capture_output=True)
+        if probe.returncode != 0:
+            print("skip: no private network namespace here (unshare -n)")
+            return 77
+    r = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=600)
     if r.returncode not in (0, 3):  # 3: a scene that ends in its safe state or diverges still writes its outputs
         print(r.stdout, r.stderr)
         print(f"FAIL: gyrostab run exited {r.returncode}")

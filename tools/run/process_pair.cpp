@@ -63,7 +63,6 @@ std::vector<std::string> child_args(const RunRequest& req, const std::string& ro
   }
   if (role == "plant") {
     if (!t.log_path.empty()) a.insert(a.end(), {"--log", t.log_path});
-    if (!req.mcap_path.empty()) a.insert(a.end(), {"--mcap", req.mcap_path});
     if (req.view.enabled) {
       char wait[32], linger[32];
       std::snprintf(wait, sizeof wait, "%.17g", req.view.wait_s);
@@ -282,6 +281,14 @@ int run_process_pair(const RunRequest& req) {
   if (!write_file_atomic(req.out_dir + "/report.json", report.dump(2) + "\n", out_error)) {
     std::fprintf(stderr, "gyrostab run: %s\n", out_error.c_str());
     return 3;
+  }
+  // --mcap: from the plant's signals.csv and the merged report, so the file's report is report.json.
+  if (!req.mcap_path.empty() && have_plant) {
+    if (!write_mcap_from_outputs(req.mcap_path, req.out_dir, report, out_error)) {
+      std::fprintf(stderr, "gyrostab run: %s\n", out_error.c_str());
+      return 3;
+    }
+    std::printf("%s: wrote %s\n", req.scene_path.c_str(), req.mcap_path.c_str());
   }
   if (happened == "completed") {
     std::printf("%s: wrote %s/report.json, signals.csv (plant and controller over %s)\n",

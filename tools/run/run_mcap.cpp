@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "tools/log/mcap_writer.hpp"
 
@@ -60,17 +62,86 @@ std::string mcap_path_problem(const std::string& path) {
   return "";
 }
 
+namespace {
+
+// signals.csv read back: t_s first; ticks from the times as RecorderRows does.
+class CsvRows final : public ChannelRows {
+ public:
+  std::vector<std::string> columns;
+  std::vector<double> data;
+  std::int64_t tick_ns{1};
+  std::size_t rows() const override { return columns.empty() ? 0 : data.size() / columns.size(); }
+  std::int64_t tick(std::size_t row) const override {
+    return static_cast<std::int64_t>(std::llround(data[row * columns.size()] * 1e9 / static_cast<double>(tick_ns)));
+  }
+  double value(std::size_t row, std::size_t signal) const override { return data[row * columns.size() + signal]; }
+
+  bool read(const std::string& file, std::string& error) {
+    std::ifstream f(file);
+    std::string line;
+    if (!f || !std::getline(f, line)) {
+      error = "cannot read " + file;
+      return false;
+    }
+    std::stringstream header(line);
+    for (std::string c; std::getline(header, c, ',');) columns.push_back(c);
+    while (std::getline(f, line)) {
+      if (line.empty()) continue;
+      std::size_t n = 0;
+      const char* p = line.c_str();
+      while (*p != '\0') {
+        char* end = nullptr;
+        data.push_back(std::strtod(p, &end));
+        if (end == p) {
+          error = file + ": not a number in row " + std::to_string(rows());
+          return false;
+        }
+        ++n;
+        p = *end == ',' ? end + 1 : end;
+      }
+      if (n != columns.size()) {
+        error = file + ": a row of " + std::to_string(n) + " values for " + std::to_string(columns.size()) + " columns";
+        return false;
+      }
+    }
+    return true;
+  }
+};
+
+bool write_file(const std::string& path, std::int64_t tick_ns, const ChannelInfo& signals,
+                const ChannelRows& rows, const nlohmann::json& report, const std::vector<McapChannel>& extra,
+                std::string& error);
+
+}  // namespace
+
 bool write_run_mcap(const std::string& path, const LoopConfig& loop, const Recorder& rec, const nlohmann::json& report,
                     const std::vector<McapChannel>& extra, std::string& error) {
+  const ChannelInfo signals{kSignalsTopic, "gyrostab.signals." + loop.device, signals_of_columns(rec.columns())};
+  return write_file(path, loop.tick_ns, signals, RecorderRows(rec, loop.tick_ns), report, extra, error);
+}
+
+bool write_mcap_from_outputs(const std::string& path, const std::string& out_dir, const nlohmann::json& report,
+                             std::string& error) {
+  CsvRows rows;
+  if (!rows.read(out_dir + "/signals.csv", error)) return false;
+  const nlohmann::json& scene = report.contains("scene") ? report["scene"] : nlohmann::json::object();
+  rows.tick_ns = scene.value("tick_ns", std::int64_t{1'000'000});
+  const std::string device = scene.value("device", std::string("unknown"));
+  const ChannelInfo signals{kSignalsTopic, "gyrostab.signals." + device, signals_of_columns(rows.columns)};
+  return write_file(path, rows.tick_ns, signals, rows, report, {}, error);
+}
+
+namespace {
+
+bool write_file(const std::string& path, std::int64_t tick_ns, const ChannelInfo& signals,
+                const ChannelRows& rows, const nlohmann::json& report, const std::vector<McapChannel>& extra,
+                std::string& error) {
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
   mcap::Writer w;
   mcap::WriterOptions options;
   if (!w.open(tmp, options, error)) return false;
-  bool ok = true;
-  ChannelInfo signals{kSignalsTopic, "gyrostab.signals." + loop.device, signals_of_columns(rec.columns())};
-  RecorderRows rows(rec, loop.tick_ns);
-  ok = ok && write_channel(w, signals, rows, loop.tick_ns);
-  for (const McapChannel& c : extra) ok = ok && c.rows != nullptr && write_channel(w, c.info, *c.rows, loop.tick_ns);
+  bool ok = write_channel(w, signals, rows, tick_ns);
+  for (const McapChannel& c : extra) ok = ok && c.rows != nullptr && write_channel(w, c.info, *c.rows, tick_ns);
   if (ok) {
     const std::uint16_t schema = w.add_schema(
         "gyrostab.report", "jsonschema",
@@ -81,7 +152,7 @@ bool write_run_mcap(const std::string& path, const LoopConfig& loop, const Recor
     if (report.contains("timing") && report["timing"].contains("ticks") && report["timing"]["ticks"].is_number_integer()) {
       ticks = report["timing"]["ticks"].get<std::int64_t>();
     }
-    ok = w.write(channel, stamp(ticks, loop.tick_ns), stamp(ticks, loop.tick_ns), report.dump());
+    ok = w.write(channel, stamp(ticks, tick_ns), stamp(ticks, tick_ns), report.dump());
   }
   std::string why;
   if (!ok || !w.close(why)) {
@@ -99,5 +170,7 @@ bool write_run_mcap(const std::string& path, const LoopConfig& loop, const Recor
   }
   return true;
 }
+
+}  // namespace
 
 }  // namespace gyrostab::tools

@@ -48,5 +48,10 @@ std::string mcap_path_problem(const std::string& path);
 // Writes the file (through `path`.tmp-<pid> and a rename); false with `error` set, and nothing left behind.
 bool write_run_mcap(const std::string& path, const LoopConfig& loop, const Recorder& rec, const nlohmann::json& report,
                     const std::vector<McapChannel>& extra, std::string& error);
+// The same from a run's output directory (its signals.csv, whose "%.17g" values read back to the same doubles)
+// and the run's final report: the two-process run writes its file this way, once the parent has merged the
+// plant's and the controller's reports.
+bool write_mcap_from_outputs(const std::string& path, const std::string& out_dir, const nlohmann::json& report,
+                             std::string& error);
 
 }  // namespace gyrostab::tools

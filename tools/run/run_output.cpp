@@ -37,12 +37,17 @@ nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& o) {
   return t;
 }
 
-bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recorder& rec, const nlohmann::json& in,
-                       std::string& error) {
+nlohmann::json final_report(const nlohmann::json& in) {
   nlohmann::json report = in;
   // Every scene's figures carry its tick count; ticks_per_second and the compute-time counters vary run to
   // run, so they stay in "timing" (figures must be bit-identical across reruns).
   if (report.contains("timing") && report.contains("figures")) report["figures"]["ticks"] = report["timing"]["ticks"];
+  return report;
+}
+
+bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recorder& rec, const nlohmann::json& in,
+                       std::string& error) {
+  const nlohmann::json report = final_report(in);
   if (req.report_out) *req.report_out = report;
   if (req.csv_out) *req.csv_out = rec.csv();
   if (!req.write_outputs) return true;

@@ -44,6 +44,9 @@ struct RunRequest {
 nlohmann::json scene_summary(const LoopConfig& cfg, const std::string& scene_path);
 nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& outcome);
 
+// report.json as written: `report` with figures.ticks (every scene's figures carry its tick count).
+nlohmann::json final_report(const nlohmann::json& report);
+
 // Hands the report and CSV to the request (report_out, csv_out) and, if write_outputs, writes report.json,
 // signals.csv and (if cfg.plots) signals.png; returns false with `error` set.
 bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recorder& rec, const nlohmann::json& report,

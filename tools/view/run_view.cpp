@@ -52,7 +52,7 @@ std::unique_ptr<RunView> RunView::start(const DeviceScene& scene, const RunReque
 }
 
 void RunView::finish(const nlohmann::json& report) {
-  server_.finish(report);
+  server_.finish(final_report(report));
   StopSignalGuard guard;  // SIGINT/SIGTERM end the serving, not the process half way
   const double linger = req_.view.linger_s;
   if (linger < 0) {

@@ -65,9 +65,25 @@ function render(msg) {
     box.append(h, table);
     root.append(box);
   });
-  if (msg.summary && msg.summary.summary_csv) {
+  if (msg.summary && msg.summary.summary_csv && msg.summary.summary_csv.length > 1) {
+    // A few of results/summary.csv's columns, a row per variant; the file has them all.
+    const rows = msg.summary.summary_csv.map((l) => l.split(","));
+    const want = ["variant", "completed", "failed", "missing", "roll_rms_rad", "roll_reduction", "stop_contacts",
+                  "precession_max_rad", "operability_nordforsk_merchant"];
+    const cols = want.map((w) => rows[0].indexOf(w)).filter((i) => i >= 0);
+    const table = $("summary-table");
+    table.replaceChildren();
+    rows.forEach((r, k) => {
+      const tr = document.createElement("tr");
+      for (const i of cols) {
+        const cell = document.createElement(k === 0 ? "th" : "td");
+        const v = Number(r[i]);
+        cell.textContent = k > 0 && i > 0 && r[i] !== "" && isFinite(v) ? Number(v.toPrecision(4)).toString() : r[i];
+        tr.append(cell);
+      }
+      table.append(tr);
+    });
     $("summary").hidden = false;
-    $("summary-text").textContent = msg.summary.summary_csv.join("\n");
   }
 }
 

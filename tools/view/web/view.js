@@ -207,6 +207,8 @@ function onEnd(msg) {
     }
     body.append(tr);
   }
+  const predicted = keys.some((k) => figures[k + "_predicted"] !== undefined);
+  $("figures-note").textContent = predicted ? "" : "This scene's report has no predicted figures: measured values only.";
   $("figures").hidden = false;
   const t = (msg.report && msg.report.timing) || {};
   setList($("rate"), [
