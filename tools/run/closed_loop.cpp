@@ -4,8 +4,18 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 
 namespace gyrostab::tools {
+
+namespace {
+// The calling thread's CPU time: what the loop itself cost, whatever else the machine ran meanwhile.
+double thread_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+}  // namespace
 
 PlantTick::PlantTick(PlantPort& plant, const LoopConfig& cfg, Recorder* recorder, RowSink* rows)
     : plant_(plant), cfg_(cfg), recorder_(recorder), rows_(rows), applied_(plant.initial_command()) {}
@@ -41,6 +51,7 @@ LoopOutcome run_closed_loop(PlantPort& plant, ControllerPort& controller, const 
   msg::SensorFrame sensor{};
   msg::ActuatorFrame command{};
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = thread_cpu_s();
   const bool show = progress && isatty(STDERR_FILENO);
   auto last_report = start;
   for (std::int64_t k = 0; k < ticks; ++k) {
@@ -65,6 +76,7 @@ LoopOutcome run_closed_loop(PlantPort& plant, ControllerPort& controller, const 
     }
   }
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.cpu_s = thread_cpu_s() - cpu_start;
   if (show) std::fprintf(stderr, "\r%*s\r", 60, "");
   return out;
 }

@@ -28,6 +28,10 @@ nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& o) {
                    {"wall_s", o.wall_s},
                    {"ticks_per_second", o.wall_s > 0 ? static_cast<double>(o.ticks_run) / o.wall_s : 0.0},
                    {"real_time_factor", o.wall_s > 0 ? static_cast<double>(o.ticks_run) * cfg.tick_s() / o.wall_s : 0.0}};
+  if (o.cpu_s > 0) {
+    t["loop_cpu_s"] = o.cpu_s;
+    t["ticks_per_cpu_second"] = static_cast<double>(o.ticks_run) / o.cpu_s;
+  }
   if (o.diverged) t["diverged_at_tick"] = o.diverged_tick;
   if (o.diverged && o.diverged_state.name != nullptr) {
     t["diverged_state"] = {{"component", o.diverged_state.name},

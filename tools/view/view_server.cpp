@@ -369,7 +369,7 @@ nlohmann::json ViewServer::Impl::data_message(std::int64_t from) const {
 
 void ViewServer::Impl::tick() {
   if (ring == nullptr) {  // snapshot mode
-    if (++frame % 6 == 0) {
+    if (++frame % 10 == 0) {
       std::string snap;
       std::uint64_t version = 0;
       {
@@ -384,7 +384,7 @@ void ViewServer::Impl::tick() {
         s->snap_seen = version;
       }
     }
-    timer.expires_after(std::chrono::milliseconds(5));
+    timer.expires_after(std::chrono::milliseconds(10));
     timer.async_wait([this](beast::error_code ec) {
       if (!ec) tick();
     });
@@ -392,7 +392,7 @@ void ViewServer::Impl::tick() {
   }
   drain();
   const auto now = std::chrono::steady_clock::now();
-  if (++frame % 6 == 0) {  // every 30 ms: about 33 page updates a second
+  if (++frame % 10 == 0) {  // every 100 ms: 10 page updates a second (a page redraws at 5 Hz while a run goes on)
     const std::int64_t t = store->last_header().tick;
     const double dt = std::chrono::duration<double>(now - rate_t0).count();
     if (dt >= 0.5) {
@@ -414,7 +414,7 @@ void ViewServer::Impl::tick() {
       }
     }
   }
-  timer.expires_after(std::chrono::milliseconds(5));
+  timer.expires_after(std::chrono::milliseconds(10));
   timer.async_wait([this](beast::error_code ec) {
     if (!ec) tick();
   });

@@ -1,9 +1,9 @@
 // The live view's server: HTTP and WebSocket on Boost.Beast, on a thread of its own. It serves the page (static
 // files of tools/view/web/ and uPlot from the build's npm tree) and one WebSocket per open page, over which it
-// sends, never receives: a "meta" message on connect (view_meta.hpp), then about 30 times a second the buckets
+// sends, never receives: a "meta" message on connect (view_meta.hpp), then 10 times a second the buckets
 // that changed since that page's last message, the latest row, the status and the rates, and at the end the
 // report. A page that is slow to read gets fewer, larger messages (its own bookmark into the store), never
-// slows the loop: the loop only pushes into the ring (live_ring.hpp) that this thread drains every 5 ms.
+// slows the loop: the loop only pushes into the ring (live_ring.hpp) that this thread drains every 10 ms.
 //
 // Who may connect: the server binds 127.0.0.1 unless told otherwise; every request must carry the random token
 // printed at start (the page's URL has it, like Jupyter's); the Host header must name the server (a page of
@@ -57,7 +57,7 @@ class ViewServer {
   // tools/view/web/), `meta` sent on connect, then the latest publish()ed state whenever it changed.
   bool start_snapshots(const ViewOptions& options, const std::string& page, const nlohmann::json& meta,
                        std::string& error);
-  // Any thread: the state every page gets next (about 30 times a second at most).
+  // Any thread: the state every page gets next (10 times a second at most).
   void publish(const nlohmann::json& state);
   // http://ADDR:PORT/?token=...
   std::string url() const;

@@ -12,6 +12,7 @@ const state = {
   charts: [],          // {signal, index, plot, el}
   refused: false,
   messages: 0,
+  pendingPanels: null,
 };
 window.gyrostabView = state;  // read by the browser test (tests/browser/)
 
@@ -100,32 +101,74 @@ function buildCharts(meta) {
       hooks: { draw: [limitHook(chart)] },
     };
     chart.plot = new uPlot(opts, [[], []], el);
+    chart.visible = true;
     state.charts.push(chart);
+    visibility.observe(el);
   });
 }
 
-// Per bucket two points in the order they occurred (the minimum and the maximum), one for a single row.
-function seriesOf(j) {
-  const xs = [], ys = [];
-  const keys = [...state.buckets.keys()].sort((a, b) => a - b);
-  for (const i of keys) {
-    const b = state.buckets.get(i);
-    const lo = b.lo[j], hi = b.hi[j];
-    if (b.n === 1 || lo === hi) { xs.push(b.t0); ys.push(lo); continue; }
-    const [first, second] = b.lo_first[j] ? [lo, hi] : [hi, lo];
-    xs.push(b.t0, b.t1); ys.push(first, second);
+// A chart scrolled out of sight is not redrawn until it comes back.
+const visibility = new IntersectionObserver((entries) => {
+  for (const e of entries) {
+    const c = state.charts.find((x) => x.el === e.target);
+    if (!c) continue;
+    c.visible = e.isIntersecting;
+    if (c.visible) scheduleDraw();
   }
-  return [xs, ys];
+});
+
+// Per bucket two points in the order they occurred (the minimum and the maximum), one for a single row. The
+// arrays grow at their end: only the last bucket (still filling) is rewritten; a bucket out of order (a page
+// that reconnected) rebuilds them.
+const series = { xs: [], ys: [], last: -1, lastStart: 0 };
+function pointsOf(b, j, xs, ys) {
+  const lo = b.lo[j], hi = b.hi[j];
+  if (b.n === 1 || lo === hi) { xs.push(b.t0); ys.push(lo); return; }
+  const [first, second] = b.lo_first[j] ? [lo, hi] : [hi, lo];
+  xs.push(b.t0, b.t1); ys.push(first, second);
+}
+function addBuckets(list) {
+  const signals = state.meta.channels[0].signals.length - 1;
+  if (series.xs.length !== signals) {
+    series.xs = Array.from({ length: signals }, () => []);
+    series.ys = Array.from({ length: signals }, () => []);
+  }
+  for (const b of list) {
+    if (b.i < series.last) {  // out of order: rebuild from every bucket held
+      series.last = -1;
+      series.xs.forEach((a) => (a.length = 0));
+      series.ys.forEach((a) => (a.length = 0));
+      addBuckets([...state.buckets.values()].sort((x, y) => x.i - y.i));
+      return;
+    }
+    for (let j = 0; j < signals; j++) {
+      if (b.i === series.last) { series.xs[j].length = series.lastStart[j]; series.ys[j].length = series.lastStart[j]; }
+    }
+    if (b.i !== series.last) series.lastStart = series.xs.map((a) => a.length);
+    for (let j = 0; j < signals; j++) pointsOf(b, j, series.xs[j], series.ys[j]);
+    series.last = b.i;
+  }
 }
 
-let drawPending = false;
+// The page shares the machine with the loop: while the run goes on it redraws at most 5 times a second and
+// spends at most about 5 % of its time drawing (the interval grows to 20 times the last draw's duration); at
+// the end it draws at once; never while the tab is hidden (requestAnimationFrame does not fire there).
+let drawPending = false, lastDraw = 0, drawCost = 0;
 function scheduleDraw() {
   if (drawPending) return;
   drawPending = true;
-  requestAnimationFrame(() => {
+  const interval = Math.max(200, 20 * drawCost);
+  const wait = state.ended ? 0 : Math.max(0, interval - (performance.now() - lastDraw));
+  setTimeout(() => requestAnimationFrame(draw), wait);
+}
+function draw() {
+  {
     drawPending = false;
+    lastDraw = performance.now();
+    if (state.pendingPanels) { state.pendingPanels(); state.pendingPanels = null; }
     for (const c of state.charts) {
-      c.plot.setData(seriesOf(c.index - 1));
+      if (!c.visible && !state.ended) continue;
+      c.plot.setData([series.xs[c.index - 1].slice(), series.ys[c.index - 1].slice()]);
       const v = state.latest ? state.latest.values[c.index] : null;
       c.value.textContent = fmt(v) + (c.signal.unit ? " " + c.signal.unit : "");
       const far = c.limits.filter((l) => {
@@ -134,7 +177,8 @@ function scheduleDraw() {
       });
       c.note.textContent = far.map((l) => `${l.label} ±${fmt(l.value)} off scale`).join("; ");
     }
-  });
+    drawCost = performance.now() - lastDraw;
+  }
 }
 
 function showStatus(msg) {
@@ -162,7 +206,13 @@ function showStatus(msg) {
 
 function onData(msg) {
   for (const b of msg.buckets) state.buckets.set(b.i, b);
+  addBuckets(msg.buckets);
   state.latest = msg.latest;
+  state.pendingPanels = () => panels(msg);  // the panels are redrawn with the charts
+  scheduleDraw();
+}
+
+function panels(msg) {
   const meta = state.meta;
   setList($("rate"), [
     ["ticks per second", fmt(msg.ticks_per_s, 3)],
@@ -180,12 +230,13 @@ function onData(msg) {
     ]);
   }
   showStatus(msg);
-  scheduleDraw();
 }
 
 function onEnd(msg) {
+  if (state.pendingPanels) { state.pendingPanels(); state.pendingPanels = null; }
   state.ended = true;
   state.report = msg.report;
+  scheduleDraw();
   const conn = $("connection");
   conn.textContent = "run ended";
   conn.className = "pill warn";
