@@ -3,11 +3,11 @@
 
   mcap_scene_test.py GYROSTAB SCENE WORKDIR NODE_MODULES [--lcm]
 
-Runs `gyrostab run SCENE --ticks N --mcap WORKDIR/run.mcap` (N = the scene's own ticks, at most 100 000, so the
-label stays within minutes), then tests/mcap/mcap_readback.cjs (Foxglove's @mcap/core under Debian's node) reads
+Runs `gyrostab run SCENE --ticks N --mcap WORKDIR/run.mcap` (N = the scene's own ticks: its whole run; the
+environment's GYROSTAB_MCAP_MAX_TICKS caps it), then tests/mcap/mcap_readback.cjs (Foxglove's @mcap/core under Debian's node) reads
 every message back, through the indexes and record by record with every CRC checked, and compares each value
 with signals.csv and the report message with report.json. Exit 77 (skip) when node or @mcap/core is missing
-(tools/setup installs both). With --lcm: plant and controller as two processes over LCM, in a private network
+(tools/setup installs both). With --lcm: plant and controller as two processes over LCM (at most 100 000 ticks), in a private network
 namespace (unshare -n, loopback multicast; exit 77 where that is not permitted), with --view too: the file is
 written from the plant's signals.csv and the merged report."""
 import os
@@ -16,8 +16,8 @@ import subprocess
 import sys
 import tomllib
 
-# GYROSTAB_MCAP_MAX_TICKS=0 runs every scene to its full duration (docs/mcap.md gives that run's time).
-MAX_TICKS = int(os.environ.get("GYROSTAB_MCAP_MAX_TICKS", "100000"))
+# GYROSTAB_MCAP_MAX_TICKS=N caps every scene at N ticks (0, the default: the scene's full duration).
+MAX_TICKS = int(os.environ.get("GYROSTAB_MCAP_MAX_TICKS", "0"))
 
 
 def main():
@@ -33,6 +33,8 @@ def main():
     ticks = int(round(float(s["scene"]["duration_s"]) * 1e9 / tick_ns))
     if MAX_TICKS > 0:
         ticks = min(ticks, MAX_TICKS)
+    if lcm:
+        ticks = min(ticks, 100_000)  # lockstep over LCM runs at a few 10 000 ticks/s: the first 100 s of the run
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     out, mcap = os.path.join(work, "out"), os.path.join(work, "run.mcap")

@@ -11,7 +11,7 @@
    columns, data follows, the end message carries report.json's figures; a message sent by the page closes the
    socket with 1008 (policy): no command is accepted.
 3. Bad options are refused before the run: --view with a malformed address, --mcap into a missing directory.
-Takes about 10 s."""
+Takes about 0.5 s."""
 import base64
 import json
 import os

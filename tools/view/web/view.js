@@ -22,6 +22,7 @@ const token = new URLSearchParams(location.search).get("token") || "";
 function fmt(v, digits = 4) {
   if (v === null || v === undefined) return "—";
   if (typeof v !== "number") return String(v);
+  if (Number.isInteger(v) && Math.abs(v) < 1e15) return String(v);
   if (v !== 0 && (Math.abs(v) >= 1e5 || Math.abs(v) < 1e-3)) return v.toExponential(digits - 1);
   return Number(v.toPrecision(digits)).toString();
 }
