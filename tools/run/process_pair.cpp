@@ -64,9 +64,11 @@ std::vector<std::string> child_args(const RunRequest& req, const std::string& ro
   if (role == "plant") {
     if (!t.log_path.empty()) a.insert(a.end(), {"--log", t.log_path});
     if (req.view.enabled) {
+      // The plant process serves the view. It does not linger unless asked to: a Ctrl-C that ended its serving
+      // would reach this parent too and mark a completed run as stopped.
       char wait[32], linger[32];
       std::snprintf(wait, sizeof wait, "%.17g", req.view.wait_s);
-      std::snprintf(linger, sizeof linger, "%.17g", req.view.linger_s);
+      std::snprintf(linger, sizeof linger, "%.17g", req.view.linger_s < 0 ? 0.0 : req.view.linger_s);
       a.insert(a.end(), {"--view=" + req.view.address, "--view-wait", wait, "--view-linger", linger});
     }
     if (t.sensor_drop.from >= 0) a.insert(a.end(), {"--drop-sensor", fault_arg(t.sensor_drop)});

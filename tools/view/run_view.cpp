@@ -54,6 +54,13 @@ std::unique_ptr<RunView> RunView::start(const DeviceScene& scene, const RunReque
 void RunView::finish(const nlohmann::json& report) {
   server_.finish(final_report(report));
   StopSignalGuard guard;  // SIGINT/SIGTERM end the serving, not the process half way
+  // Every open page gets the end message before anything else (a page keeps showing it once the server is
+  // gone); a page that does not read for 2 s is not waited for.
+  const auto delivered = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (server_.pages_ended() < server_.pages() && stop_signal_received() == 0 &&
+         std::chrono::steady_clock::now() < delivered) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   const double linger = req_.view.linger_s;
   if (linger < 0) {
     std::fprintf(stderr, "gyrostab: the run ended; its view stays at %s until Ctrl-C\n", server_.url().c_str());
