@@ -7,5 +7,6 @@ namespace gyrostab::tools {
 
 const char* build_source_dir();  // the checkout the binary was built from
 const char* build_image_dir();   // its target images, <build>/arm
+const char* build_npm_dir();     // the npm packages tools/setup installed, <build>/npm/node_modules
 
 }  // namespace gyrostab::tools

@@ -11,7 +11,9 @@
 #include "tools/devices/registry.hpp"
 #include "tools/run/output_dir.hpp"
 #include "tools/run/recorder.hpp"
+#include "tools/run/run_mcap.hpp"
 #include "tools/run/run_modes.hpp"
+#include "tools/view/run_view.hpp"
 
 namespace gyrostab::tools {
 namespace {
@@ -127,6 +129,16 @@ int run_scene(const RunRequest& req) {
       std::fprintf(stderr, "gyrostab: %s\n", error.c_str());
       return 2;
     }
+  }
+  if (!req.mcap_path.empty()) {
+    if (const std::string why = mcap_path_problem(req.mcap_path); !why.empty()) {
+      std::fprintf(stderr, "gyrostab: %s\n", why.c_str());
+      return 2;
+    }
+  }
+  if (const std::string why = view::view_options_problem(req); !why.empty()) {
+    std::fprintf(stderr, "gyrostab: %s\n", why.c_str());
+    return 2;
   }
   return run_device_scene(*scene, req);
 }

@@ -60,6 +60,21 @@ bool refuse_unknown_subcommand(CLI::App& app, int argc, char** argv) {
   return true;
 }
 
+// --mcap and --view: the run as an MCAP file, and its live view in the browser.
+CLI::Option* add_live_options(CLI::App* cmd, gyrostab::tools::RunRequest& r) {
+  cmd->add_option("--mcap", r.mcap_path,
+                  "also write the run as an MCAP file (recorded signals and report; Foxglove, Lichtblick, "
+                  "PlotJuggler; docs/mcap.md)");
+  CLI::Option* view = cmd->add_option("--view", r.view.address,
+                                      "serve a live view of the run in the browser at [ADDR:PORT] (default "
+                                      "127.0.0.1 on a free port; the URL with its token is printed; docs/view.md)")
+                          ->expected(0, 1);
+  cmd->add_option("--view-wait", r.view.wait_s, "with --view: wait at most this long [s] for a page before tick 0");
+  cmd->add_option("--view-linger", r.view.linger_s,
+                  "with --view: keep serving this long [s] after the run (negative: until Ctrl-C)");
+  return view;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -89,6 +104,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--log", run.transport.log_path,
                       "record the bus as an LCM event log (docs/logs.md); SIGINT/SIGTERM stop at a tick boundary");
   gyrostab::tools::add_link_options(run_cmd, run, gyrostab::tools::LinkSide::kRun);  // --transport lcm|can, the link options
+  CLI::Option* run_view = add_live_options(run_cmd, run);
 
   // Plant and controller as two processes over LCM (docs/transport.md).
   gyrostab::tools::RunRequest plant;
@@ -100,6 +116,7 @@ int main(int argc, char** argv) {
   plant_cmd->add_option("--out", plant.out_dir, "output directory (report.json, signals.csv, signals.png)");
   plant_cmd->add_option("--log", plant.transport.log_path, "record the bus as an LCM event log (docs/logs.md)");
   gyrostab::tools::add_link_options(plant_cmd, plant, gyrostab::tools::LinkSide::kPlant);
+  CLI::Option* plant_view = add_live_options(plant_cmd, plant);
   gyrostab::tools::RunRequest controller;
   controller.role = gyrostab::tools::Role::kController;
   controller.progress = false;
@@ -164,6 +181,13 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--jobs", sweep.jobs, "threads (default: the number of cores)")->check(CLI::Range(1, 1024));
   sweep_cmd->add_option("--shard", sweep.shard, "I/N: run only the tasks whose index mod N is I-1, and do not merge");
   sweep_cmd->add_flag("--quiet", sweep.quiet, "no progress");
+  CLI::Option* sweep_view =
+      sweep_cmd->add_option("--view", sweep.view_address,
+                            "serve a live view of the sweep (progress, heat maps as cells finish) at [ADDR:PORT] "
+                            "(default 127.0.0.1 on a free port; docs/view.md)")
+          ->expected(0, 1);
+  sweep_cmd->add_option("--view-linger", sweep.view_linger_s,
+                        "with --view: keep serving this long [s] after the sweep (negative: until Ctrl-C)");
   std::string merge_dir;
   CLI::App* merge_cmd = sweep_cmd->add_subcommand(
       "merge", "merge a study directory's task files into results/ (tables, summaries, heat maps) and timing.json");
@@ -190,6 +214,9 @@ int main(int argc, char** argv) {
 
   if (refuse_unknown_subcommand(app, argc, argv)) return 2;
   CLI11_PARSE(app, argc, argv);
+  run.view.enabled = run_view->count() > 0;
+  plant.view.enabled = plant_view->count() > 0;
+  sweep.view = sweep_view->count() > 0;
   if (record_cmd->parsed()) return gyrostab::tools::motion_record(record);
   if (keys_cmd->parsed()) {
     std::fputs(gyrostab::tools::scenes_markdown().c_str(), stdout);

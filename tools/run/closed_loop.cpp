@@ -4,11 +4,21 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 
 namespace gyrostab::tools {
 
-PlantTick::PlantTick(PlantPort& plant, const LoopConfig& cfg, Recorder* recorder)
-    : plant_(plant), cfg_(cfg), recorder_(recorder), applied_(plant.initial_command()) {}
+namespace {
+// The calling thread's CPU time: what the loop itself cost, whatever else the machine ran meanwhile.
+double thread_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+}  // namespace
+
+PlantTick::PlantTick(PlantPort& plant, const LoopConfig& cfg, Recorder* recorder, RowSink* rows)
+    : plant_(plant), cfg_(cfg), recorder_(recorder), rows_(rows), applied_(plant.initial_command()) {}
 
 bool PlantTick::step(std::int64_t k, const msg::ActuatorFrame& command, LoopOutcome& out) {
   const int latency = cfg_.latency_ticks;
@@ -25,19 +35,23 @@ bool PlantTick::step(std::int64_t k, const msg::ActuatorFrame& command, LoopOutc
     return false;
   }
   if (recorder_ && recorder_->due(k + 1)) {
-    if (double* row = recorder_->row(static_cast<double>(k + 1) * cfg_.tick_s())) plant_.record(row);
+    if (double* row = recorder_->row(static_cast<double>(k + 1) * cfg_.tick_s())) {
+      plant_.record(row);
+      if (rows_ != nullptr) rows_->row(k + 1, recorder_->last_row());
+    }
   }
   return true;
 }
 
 LoopOutcome run_closed_loop(PlantPort& plant, ControllerPort& controller, const LoopConfig& cfg, Recorder* recorder,
-                            bool progress, TickSink* sink) {
+                            bool progress, TickSink* sink, RowSink* rows) {
   LoopOutcome out;
   const std::int64_t ticks = cfg.ticks();
-  PlantTick tick(plant, cfg, recorder);
+  PlantTick tick(plant, cfg, recorder, rows);
   msg::SensorFrame sensor{};
   msg::ActuatorFrame command{};
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = thread_cpu_s();
   const bool show = progress && isatty(STDERR_FILENO);
   auto last_report = start;
   for (std::int64_t k = 0; k < ticks; ++k) {
@@ -62,6 +76,7 @@ LoopOutcome run_closed_loop(PlantPort& plant, ControllerPort& controller, const 
     }
   }
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.cpu_s = thread_cpu_s() - cpu_start;
   if (show) std::fprintf(stderr, "\r%*s\r", 60, "");
   return out;
 }

@@ -35,6 +35,14 @@ class TickSink {
   virtual bool record(std::int64_t tick, const msg::SensorFrame& sensor, const msg::ActuatorFrame& command) = 0;
 };
 
+// Sees each recorded row right after the recorder took it (a live view: tools/view/live_feed.hpp): the row's
+// tick and its values, "t_s" first, as the CSV will hold them. Must not allocate or block.
+class RowSink {
+ public:
+  virtual ~RowSink() = default;
+  virtual void row(std::int64_t tick, const double* values) = 0;
+};
+
 // The plant's half of tick k, shared by the in-process loop, the plant process and re-simulation (lockstep
 // runs are bit-identical to in-process because all of them run this code): the controller's command of tick
 // k enters the latency pipe, the one due at k is applied (until then the plant's initial command), the plant
@@ -42,20 +50,21 @@ class TickSink {
 // Returns false at the first non-finite state (`out` says where).
 class PlantTick {
  public:
-  PlantTick(PlantPort& plant, const LoopConfig& cfg, Recorder* recorder);
+  PlantTick(PlantPort& plant, const LoopConfig& cfg, Recorder* recorder, RowSink* rows = nullptr);
   bool step(std::int64_t k, const msg::ActuatorFrame& command, LoopOutcome& out);
 
  private:
   PlantPort& plant_;
   const LoopConfig& cfg_;
   Recorder* recorder_;
+  RowSink* rows_;
   std::array<msg::ActuatorFrame, kMaxLatencyTicks + 1> pipe_{};
   msg::ActuatorFrame applied_;
 };
 
 // Runs cfg.ticks() ticks (fewer when the plant diverges or the sink stops it). `progress`: a progress line on
-// stderr when it is a terminal.
+// stderr when it is a terminal. `rows`: sees every recorded row (with a recorder).
 LoopOutcome run_closed_loop(PlantPort& plant, ControllerPort& controller, const LoopConfig& cfg, Recorder* recorder,
-                            bool progress = false, TickSink* sink = nullptr);
+                            bool progress = false, TickSink* sink = nullptr, RowSink* rows = nullptr);
 
 }  // namespace gyrostab::tools

@@ -1,7 +1,8 @@
 // The in-process run: the recorder, the closed loop under the request's limits and hooks, the report (scene,
 // the plant's figures, timing with the firmware controller's counters) and the outputs. With --log FILE the
 // same loop has the bus log as its tick sink (bus_log_sink.hpp) and stops at a tick boundary on
-// SIGINT/SIGTERM (exit 128 + signal, outputs and log written up to it).
+// SIGINT/SIGTERM (exit 128 + signal, outputs and log written up to it). With --view the loop's row sink is the
+// live view's feed (tools/view/run_view.hpp), which only reads.
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -9,6 +10,7 @@
 #include "tools/run/bus_log_sink.hpp"
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/run_modes.hpp"
+#include "tools/view/run_view.hpp"
 
 namespace gyrostab::tools {
 
@@ -62,12 +64,22 @@ int run_in_process(const DeviceScene& scene, const RunRequest& req) {
       return 3;
     }
   }
+  std::unique_ptr<view::RunView> live;
+  if (req.view.enabled) {
+    std::string why;
+    live = view::RunView::start(scene, req, rec, controller.get(), run_loop.ticks(), why);
+    if (!live) {
+      std::fprintf(stderr, "gyrostab: %s\n", why.c_str());
+      return 2;
+    }
+  }
   LoopOutcome outcome;
   {
     std::unique_ptr<StopSignalGuard> guard;
     if (logging) guard = std::make_unique<StopSignalGuard>();
     if (req.before_loop) req.before_loop();
-    outcome = run_closed_loop(*plant, *controller, run_loop, &rec, req.progress, log.get());
+    outcome = run_closed_loop(*plant, *controller, run_loop, &rec, req.progress, log.get(),
+                              live ? live->sink() : nullptr);
     if (req.after_loop) req.after_loop();
     if (logging && outcome.interrupted) logged.stop_signal = stop_signal_received();
   }
@@ -77,7 +89,9 @@ int run_in_process(const DeviceScene& scene, const RunRequest& req) {
   report["timing"]["controller"] = controller->report();
   if (logging) report["log"] = logged.summary;
   std::string error;
-  if (!write_run_outputs(req, loop, rec, report, error)) {
+  const bool written = write_run_outputs(req, loop, rec, report, error);
+  if (live) live->finish(report);
+  if (!written) {
     std::fprintf(stderr, "gyrostab: %s\n", error.c_str());
     return 3;
   }

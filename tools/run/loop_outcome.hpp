@@ -14,6 +14,7 @@ struct LoopOutcome {
   std::int64_t diverged_tick{-1};
   NonFiniteState diverged_state{};  // which component, its value and last finite value
   double wall_s{0.0};
+  double cpu_s{0.0};              // the loop thread's CPU time (in process; 0 where not measured)
   bool interrupted{false};        // stopped at a tick boundary by the tick sink (stop signal, failed log write)
 };
 

@@ -50,6 +50,7 @@
 #include "tools/run/run_modes.hpp"
 #include "tools/run/run_output.hpp"
 #include "tools/run/target_link_setup.hpp"
+#include "tools/view/run_view.hpp"
 
 namespace gyrostab::tools {
 namespace {
@@ -70,14 +71,15 @@ struct PlantLinkOutcome {
 template <class Transport>
 LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& limits, const LoopConfig& cfg,
                            const RunRequest& req, const LinkSettings& s, hil::FrameEndpoint<Transport>& ep,
-                           LinkStats& stats, PlantLinkOutcome& link, Recorder* recorder, TickSink* sink) {
+                           LinkStats& stats, PlantLinkOutcome& link, Recorder* recorder, TickSink* sink,
+                           RowSink* rows) {
   LoopOutcome out;
   const std::int64_t ticks = cfg.ticks();
   const int latency = cfg.latency_ticks;
   const TransportOptions& t = req.transport;
   hil::FrameOrder order;
   JitterInjector jitter(s, cfg.seed);
-  PlantTick plant(plant_port, cfg, recorder);
+  PlantTick plant(plant_port, cfg, recorder, rows);
   msg::SensorFrame sensor{};
   msg::SensorFrame published{};
   msg::ActuatorFrame command{};
@@ -227,9 +229,20 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   // Installed for the rest of the run: a stop request that comes while the outputs are written only sets the
   // flag (the run is ending anyway), so it cannot kill the process half way through report.json.
   StopSignalGuard stop_guard;
+  // --view: the live view of the plant's rows (no controller here: its status comes with the frames, later).
+  std::unique_ptr<view::RunView> live;
+  if (req.view.enabled) {
+    std::string why;
+    live = view::RunView::start(scene, req, rec, nullptr, run_loop.ticks(), why);
+    if (!live) {
+      std::fprintf(stderr, "gyrostab plant: %s\n", why.c_str());
+      return 2;
+    }
+  }
   {
     if (req.before_loop) req.before_loop();
-    outcome = run_plant_loop(*plant, limits, run_loop, req, s, ep, *stats, link, &rec, log.get());
+    outcome = run_plant_loop(*plant, limits, run_loop, req, s, ep, *stats, link, &rec, log.get(),
+                             live ? live->sink() : nullptr);
     if (logging && outcome.interrupted && link.stop_signal == 0) link.stop_signal = stop_signal_received();
     if (req.after_loop) req.after_loop();
   }
@@ -287,7 +300,9 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   report["link"] = l;
   if (logging) report["log"] = logged.summary;
   std::string error;
-  if (!write_run_outputs(req, loop, rec, report, error)) {
+  const bool written = write_run_outputs(req, loop, rec, report, error);
+  if (live) live->finish(report);
+  if (!written) {
     std::fprintf(stderr, "gyrostab plant: %s\n", error.c_str());
     return 3;
   }

@@ -22,6 +22,7 @@
 #include "tools/run/link_identity.hpp"
 #include "tools/run/link_settings.hpp"
 #include "tools/run/output_dir.hpp"
+#include "tools/run/run_mcap.hpp"
 
 namespace gyrostab::tools {
 namespace {
@@ -62,6 +63,14 @@ std::vector<std::string> child_args(const RunRequest& req, const std::string& ro
   }
   if (role == "plant") {
     if (!t.log_path.empty()) a.insert(a.end(), {"--log", t.log_path});
+    if (req.view.enabled) {
+      // The plant process serves the view. It does not linger unless asked to: a Ctrl-C that ended its serving
+      // would reach this parent too and mark a completed run as stopped.
+      char wait[32], linger[32];
+      std::snprintf(wait, sizeof wait, "%.17g", req.view.wait_s);
+      std::snprintf(linger, sizeof linger, "%.17g", req.view.linger_s < 0 ? 0.0 : req.view.linger_s);
+      a.insert(a.end(), {"--view=" + req.view.address, "--view-wait", wait, "--view-linger", linger});
+    }
     if (t.sensor_drop.from >= 0) a.insert(a.end(), {"--drop-sensor", fault_arg(t.sensor_drop)});
     if (t.sensor_corrupt.from >= 0) a.insert(a.end(), {"--corrupt-sensor", fault_arg(t.sensor_corrupt)});
   } else {
@@ -140,6 +149,12 @@ int run_process_pair(const RunRequest& req) {
   if (!check_output_dir(req.out_dir, out_error) || !check_output_dir(req.out_dir + "/controller", out_error)) {
     std::fprintf(stderr, "gyrostab run: %s\n", out_error.c_str());
     return 2;
+  }
+  if (!req.mcap_path.empty()) {
+    if (const std::string why = mcap_path_problem(req.mcap_path); !why.empty()) {
+      std::fprintf(stderr, "gyrostab run: %s\n", why.c_str());
+      return 2;
+    }
   }
   std::error_code ec;
   std::filesystem::remove(req.out_dir + "/report.json", ec);
@@ -268,6 +283,14 @@ int run_process_pair(const RunRequest& req) {
   if (!write_file_atomic(req.out_dir + "/report.json", report.dump(2) + "\n", out_error)) {
     std::fprintf(stderr, "gyrostab run: %s\n", out_error.c_str());
     return 3;
+  }
+  // --mcap: from the plant's signals.csv and the merged report, so the file's report is report.json.
+  if (!req.mcap_path.empty() && have_plant) {
+    if (!write_mcap_from_outputs(req.mcap_path, req.out_dir, report, out_error)) {
+      std::fprintf(stderr, "gyrostab run: %s\n", out_error.c_str());
+      return 3;
+    }
+    std::printf("%s: wrote %s\n", req.scene_path.c_str(), req.mcap_path.c_str());
   }
   if (happened == "completed") {
     std::printf("%s: wrote %s/report.json, signals.csv (plant and controller over %s)\n",

@@ -66,6 +66,13 @@ class Recorder {
     return scratch_.data();
   }
 
+  // The last row of the table ("t_s" first, the recorded columns), complete; nullptr before the first.
+  const double* last_row() const {
+    if (rows_ == 0) return nullptr;
+    flush();
+    return data_.data() + (rows_ - 1) * width_;
+  }
+
   std::size_t rows() const { return static_cast<std::size_t>(rows_); }
   std::size_t width() const { return static_cast<std::size_t>(width_); }
   const std::vector<std::string>& columns() const { return columns_; }  // recorded ones, "t_s" first

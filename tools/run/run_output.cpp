@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "tools/run/output_dir.hpp"
+#include "tools/run/run_mcap.hpp"
 
 namespace gyrostab::tools {
 
@@ -27,6 +28,10 @@ nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& o) {
                    {"wall_s", o.wall_s},
                    {"ticks_per_second", o.wall_s > 0 ? static_cast<double>(o.ticks_run) / o.wall_s : 0.0},
                    {"real_time_factor", o.wall_s > 0 ? static_cast<double>(o.ticks_run) * cfg.tick_s() / o.wall_s : 0.0}};
+  if (o.cpu_s > 0) {
+    t["loop_cpu_s"] = o.cpu_s;
+    t["ticks_per_cpu_second"] = static_cast<double>(o.ticks_run) / o.cpu_s;
+  }
   if (o.diverged) t["diverged_at_tick"] = o.diverged_tick;
   if (o.diverged && o.diverged_state.name != nullptr) {
     t["diverged_state"] = {{"component", o.diverged_state.name},
@@ -36,12 +41,17 @@ nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& o) {
   return t;
 }
 
-bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recorder& rec, const nlohmann::json& in,
-                       std::string& error) {
+nlohmann::json final_report(const nlohmann::json& in) {
   nlohmann::json report = in;
   // Every scene's figures carry its tick count; ticks_per_second and the compute-time counters vary run to
   // run, so they stay in "timing" (figures must be bit-identical across reruns).
   if (report.contains("timing") && report.contains("figures")) report["figures"]["ticks"] = report["timing"]["ticks"];
+  return report;
+}
+
+bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recorder& rec, const nlohmann::json& in,
+                       std::string& error) {
+  const nlohmann::json report = final_report(in);
   if (req.report_out) *req.report_out = report;
   if (req.csv_out) *req.csv_out = rec.csv();
   if (!req.write_outputs) return true;
@@ -70,6 +80,11 @@ bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recor
   if (!out.commit(written, error)) return false;
   if (req.role != Role::kController) {
     std::printf("%s: wrote %s in %s\n", req.scene_path.c_str(), list_names(written).c_str(), req.out_dir.c_str());
+  }
+  // After the directory's outputs are in place, so a failure here loses none of them.
+  if (!req.mcap_path.empty() && req.role != Role::kController) {
+    if (!write_run_mcap(req.mcap_path, cfg, rec, report, {}, error)) return false;
+    std::printf("%s: wrote %s\n", req.scene_path.c_str(), req.mcap_path.c_str());
   }
   return true;
 }

@@ -21,6 +21,14 @@ struct RunRequest {
   std::string out_dir{"out"};
   Role role{Role::kInProcess};  // which part of the loop this process runs (run_role.hpp)
   TransportOptions transport;
+  std::string mcap_path;  // --mcap FILE: the run as an MCAP file too (run_mcap.hpp)
+  // --view [ADDR:PORT]: the live view (tools/view/run_view.hpp)
+  struct View {
+    bool enabled{false};
+    std::string address;   // "" = 127.0.0.1 on a free port
+    double wait_s{0};      // before tick 0, wait this long at most for a page to connect
+    double linger_s{-1};   // after the run, serve this long (< 0: until SIGINT/SIGTERM)
+  } view;
   bool check_only{false};  // validate the scene and stop
   bool progress{true};     // progress line on a terminal
   // For tests and studies:
@@ -35,6 +43,9 @@ struct RunRequest {
 // The "scene" and "timing" parts every device shares.
 nlohmann::json scene_summary(const LoopConfig& cfg, const std::string& scene_path);
 nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& outcome);
+
+// report.json as written: `report` with figures.ticks (every scene's figures carry its tick count).
+nlohmann::json final_report(const nlohmann::json& report);
 
 // Hands the report and CSV to the request (report_out, csv_out) and, if write_outputs, writes report.json,
 // signals.csv and (if cfg.plots) signals.png; returns false with `error` set.

@@ -62,7 +62,8 @@ std::string scenes_markdown() {
   std::string s = kIntro;
   s += markdown(loop_config_doc());
   s += "\nThe figures every run writes in `timing` (not in `figures`, because they vary run to run): `ticks`, `wall_s`,\n"
-       "`ticks_per_second`, `real_time_factor`, and the controller's scheduler and fault-monitor counters.\n";
+       "`ticks_per_second`, `real_time_factor`, in process `loop_cpu_s` and `ticks_per_cpu_second` (the loop thread's\n"
+       "own CPU time, whatever else the machine ran), and the controller's scheduler and fault-monitor counters.\n";
   // A titled table that several devices share (e.g. the vehicle motion) follows each device's own keys,
   // rules and figures: written out at its first device, a link at the others.
   std::vector<SceneDoc> docs;

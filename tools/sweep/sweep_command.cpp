@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "tools/sweep/task_record.hpp"
 #include "tools/sweep/task_runner.hpp"
 #include "tools/sweep/task_store.hpp"
+#include "tools/view/sweep_view.hpp"
 
 namespace gyrostab::tools::sweep {
 namespace {
@@ -124,6 +126,30 @@ int run_sweep(const SweepRequest& req) {
     pending.push_back(t);
   }
 
+  // --view: the page shows every task of the shard, the reused ones from the start.
+  std::unique_ptr<view::SweepView> live;
+  if (req.view) {
+    nlohmann::json variants = nlohmann::json::array(), cells = nlohmann::json::array();
+    for (const Variant& v : s.variants) variants.push_back(v.name);
+    for (const SeaStateCell& c : s.cells) cells.push_back({{"Hs", c.Hs_m}, {"Tp", c.Tp_s}});
+    std::string why;
+    live = view::SweepView::start({true, req.view_address, req.view_linger_s},
+                                  {{"study", s.name}, {"variants", variants}, {"cells", cells},
+                                   {"headings", s.heading_count()}, {"seeds", s.seeds_per_cell}, {"total", in_shard}},
+                                  why);
+    if (!live) {
+      std::fprintf(stderr, "gyrostab sweep: %s\n", why.c_str());
+      return kSweepRefused;
+    }
+    for (const Task& t : all_tasks(s)) {
+      if (t.index % shards != shard) continue;
+      const StoredTask st = read_task_file(task_path(req.out_dir, s, t), definition_hash(s, t, task_scene_text(s, t)));
+      if (st.state == Stored::kValid) {
+        live->add(t.variant, t.cell, st.record["outcome"] == kCompleted, st.record.value("figures", nlohmann::json()));
+      }
+    }
+  }
+
   const int jobs = std::max(1, std::min<int>(req.jobs > 0 ? req.jobs : static_cast<int>(std::thread::hardware_concurrency()),
                                              static_cast<int>(std::max<std::size_t>(pending.size(), 1))));
   std::vector<Timing> timing(pending.size());
@@ -138,6 +164,7 @@ int run_sweep(const SweepRequest& req) {
       timing[i].setup_s = record["timing"]["setup_s"].get<double>();
       timing[i].run_s = record["timing"]["run_s"].get<double>();
       const bool ok = record["outcome"] == kCompleted;
+      if (live) live->add(t.variant, t.cell, ok, record.value("figures", nlohmann::json()));
       std::string why;
       if (!ok) why = record["outcome"].get<std::string>() + ": " + (record["reasons"].empty() ? "" : record["reasons"][0].get<std::string>());
       std::string write_error;
@@ -159,6 +186,10 @@ int run_sweep(const SweepRequest& req) {
     while (done.load() < static_cast<std::int64_t>(pending.size())) {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
       bar.update(reused + done.load(), reused_failed + failed.load());
+      if (live) {
+        live->publish(reused + done.load(), reused_failed + failed.load(),
+                      std::chrono::duration<double>(Clock::now() - start).count(), false);
+      }
     }
   }
   bar.finish(reused + done.load(), reused_failed + failed.load());
@@ -190,8 +221,20 @@ int run_sweep(const SweepRequest& req) {
   }
   std::fflush(stdout);
   const int run_rc = !write_errors.empty() || reused_failed + failed.load() > 0 ? kSweepTasksFailed : kSweepOk;
-  if (!req.shard.empty()) return run_rc;
+  if (!req.shard.empty()) {
+    if (live) live->finish(reused + done.load(), reused_failed + failed.load(), wall_s, nullptr);
+    return run_rc;
+  }
   const int merge_rc = merge_study_dir(req.out_dir, req.quiet);
+  if (live) {
+    nlohmann::json summary;
+    std::ifstream f(req.out_dir + "/results/summary.csv");
+    std::string line;
+    nlohmann::json rows = nlohmann::json::array();
+    while (std::getline(f, line)) rows.push_back(line);
+    summary["summary_csv"] = rows;
+    live->finish(reused + done.load(), reused_failed + failed.load(), wall_s, summary);
+  }
   return merge_rc != kSweepOk ? merge_rc : run_rc;
 }
 

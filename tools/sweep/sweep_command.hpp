@@ -13,6 +13,10 @@ struct SweepRequest {
   int jobs{0};        // 0: the number of cores
   std::string shard;  // "I/N", empty: the whole study
   bool quiet{false};
+  // --view [ADDR:PORT]: the sweep's live view (tools/view/sweep_view.hpp)
+  bool view{false};
+  std::string view_address;
+  double view_linger_s{-1};
 };
 
 int run_sweep(const SweepRequest& request);
