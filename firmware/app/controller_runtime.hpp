@@ -117,6 +117,8 @@ template <class Device, MonotonicClock Clock = NullClock>
 class ControllerRuntime {
  public:
   using SchedulerType = Scheduler<2, Clock>;
+  using SensorFrame = msg::SensorFrame;
+  using ActuatorFrame = msg::ActuatorFrame;
 
   ControllerRuntime(const RuntimeConfig& rc, const DriveConfig& dc, std::uint32_t drive_axes,
                     const Device& device, const ConfigCheck& check, Clock clock = Clock{})

@@ -11,8 +11,10 @@
 //                docs/transport.md); the controller binds to it with the configuration frame; 0 only in
 //                the image's Hello, which precedes every session
 //   bytes 10-13  freshness (u32 LE): the sender's frame counter in this direction, 1, 2, 3, ...
-//   bytes 14..   payload: the kind's struct as its bytes (both ends little-endian with the same layout: the
-//                contract's structs are checked for it in firmware/msg/; the configuration by its size)
+//   bytes 14..   payload: the kind's struct as its bytes (both ends little-endian with the same layout); a
+//                sensor or actuator frame is the device's typed frame (its 32-byte header, then its signals as
+//                doubles, gyrostab_signals/<device>_frames.hpp), so its length is the device's; the
+//                configuration is checked by its size
 //   last 4       CRC-32 (firmware/link/crc32.hpp) of every byte before it, LE
 // A receiver checks, in this order, and refuses with the first failure (counted per cause in
 // TargetRxCounters): framing (COBS), length (header + CRC at least, the largest frame at most), CRC, reserved
@@ -32,8 +34,7 @@
 
 #include "firmware/link/cobs.hpp"
 #include "firmware/link/crc32.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
 #include "firmware/scheduler/perf_counter.hpp"
 
 namespace gyrostab::firmware::link {
@@ -42,8 +43,8 @@ enum class TargetFrameKind : std::uint8_t {
   kHello = 1,           // target → host at boot: which image, what it expects
   kConfig = 2,          // host → target: the controller's configuration; binds the session
   kConfigVerdict = 3,   // target → host: the controller's start-up check
-  kSensor = 4,          // host → target: msg::SensorFrame
-  kActuator = 5,        // target → host: msg::ActuatorFrame
+  kSensor = 4,          // host → target: the device's sensor frame
+  kActuator = 5,        // target → host: the device's actuator frame
   kProfileRequest = 6,  // host → target: send the execution profile now
   kProfile = 7,         // target → host: TargetProfile
   kStop = 8,            // host → target: the run is over (the image answers with its profile, then exits)
@@ -61,12 +62,16 @@ inline constexpr std::size_t kTargetCrcBytes = 4;
 inline constexpr std::size_t kMaxConfigBytes = 1024;  // the largest device Config is 856 bytes (the CMG cluster's)
 
 // Hello: the image names itself and what it will accept.
+// This file's layout (3: each device's own frames, their sizes in the Hello; 2: one frame shared by every
+// device).
+inline constexpr std::uint32_t kTargetFrameVersion = 3;
 struct TargetHello {
   char image[24]{};                  // the device name, NUL-padded ("ship_roll_damper")
   std::uint32_t config_bytes{0};     // sizeof(Controller::Config) in this image
-  std::uint32_t frame_version{2};    // this file's layout and the contract frames it carries (2: cluster fields)
+  std::uint32_t frame_version{kTargetFrameVersion};
   std::uint32_t clock_ns_per_count{0};  // resolution of the profile clock [virtual ns]
-  std::uint32_t reserved{0};
+  std::uint16_t sensor_signals{0};      // values in the device's sensor frame (its signal table)
+  std::uint16_t command_signals{0};     // values in its actuator frame
 };
 static_assert(sizeof(TargetHello) == 40);
 
@@ -116,14 +121,24 @@ struct TargetProfile {
   TargetRxCounters rx{};          // what the image refused
 };
 
-// Payload length of a kind (kConfig: at most kMaxConfigBytes, checked by the session against its Config).
-constexpr long target_payload_bytes(TargetFrameKind k) {
+// The sizes of a device's two frames on the link (header + 8 bytes per signal).
+struct TargetFrameSizes {
+  std::size_t sensor{0};
+  std::size_t actuator{0};
+};
+constexpr TargetFrameSizes target_frame_sizes(std::size_t sensor_signals, std::size_t command_signals) {
+  return {msg::kFrameHeaderBytes + 8 * sensor_signals, msg::kFrameHeaderBytes + 8 * command_signals};
+}
+
+// Payload length of a kind (kConfig: at most kMaxConfigBytes, checked by the session against its Config; the
+// frames: the device's sizes).
+constexpr long target_payload_bytes(TargetFrameKind k, TargetFrameSizes frames) {
   switch (k) {
     case TargetFrameKind::kHello: return sizeof(TargetHello);
     case TargetFrameKind::kConfig: return -1;
     case TargetFrameKind::kConfigVerdict: return sizeof(TargetConfigVerdict);
-    case TargetFrameKind::kSensor: return sizeof(msg::SensorFrame);
-    case TargetFrameKind::kActuator: return sizeof(msg::ActuatorFrame);
+    case TargetFrameKind::kSensor: return static_cast<long>(frames.sensor);
+    case TargetFrameKind::kActuator: return static_cast<long>(frames.actuator);
     case TargetFrameKind::kProfileRequest: return 0;
     case TargetFrameKind::kProfile: return sizeof(TargetProfile);
     case TargetFrameKind::kStop: return 0;
@@ -133,6 +148,7 @@ constexpr long target_payload_bytes(TargetFrameKind k) {
 
 inline constexpr std::size_t kMaxTargetPayload = sizeof(TargetProfile) > kMaxConfigBytes ? sizeof(TargetProfile)
                                                                                             : kMaxConfigBytes;
+static_assert(sizeof(msg::AnySensorFrame) <= kMaxTargetPayload);
 inline constexpr std::size_t kMaxTargetFrame = kTargetHeaderBytes + kMaxTargetPayload + kTargetCrcBytes;
 inline constexpr std::size_t kMaxTargetWire = cobs_max_encoded(kMaxTargetFrame) + 1;  // + the closing zero
 
@@ -224,7 +240,11 @@ struct TargetFrameView {
 // when accepted, handed to the callback.
 class TargetFrameDecoder {
  public:
-  explicit TargetFrameDecoder(bool from_host) : from_host_(from_host) {}
+  // `frames`: the device's frame sizes (the image knows its own; the host sets them from the scene's device
+  // before the session, set_frame_sizes()). A frame of another length is refused (kLength).
+  TargetFrameDecoder(bool from_host, TargetFrameSizes frames) : from_host_(from_host), frames_(frames) {}
+  void set_frame_sizes(TargetFrameSizes frames) { frames_ = frames; }
+  TargetFrameSizes frame_sizes() const { return frames_; }
 
   // Accept from now on only this session and sender (0: any).
   void bind(std::uint32_t session, std::uint32_t sender) {
@@ -286,7 +306,7 @@ class TargetFrameDecoder {
     const auto kind = static_cast<TargetFrameKind>(k);
     if (sent_by_host(kind) != from_host_) return TargetRxVerdict::kKind;
     const std::size_t payload = body - kTargetHeaderBytes;
-    const long want = target_payload_bytes(kind);
+    const long want = target_payload_bytes(kind, frames_);
     if (want >= 0 ? payload != static_cast<std::size_t>(want) : payload > kMaxConfigBytes) {
       return TargetRxVerdict::kLength;
     }
@@ -331,6 +351,7 @@ class TargetFrameDecoder {
   }
 
   bool from_host_;
+  TargetFrameSizes frames_;
   std::uint32_t session_{0};
   std::uint32_t sender_{0};
   std::array<std::uint8_t, kTargetFrameKinds> last_alive_{};

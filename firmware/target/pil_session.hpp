@@ -33,7 +33,7 @@
 
 #include "firmware/link/target_frame.hpp"
 #include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
 #include "firmware/scheduler/perf_counter.hpp"
 #include "firmware/target/instruction_clock.hpp"
 #include "firmware/target/target_channel.hpp"
@@ -96,6 +96,8 @@ class PilSession {
     for (std::size_t i = 0; i + 1 < sizeof h.image && image_name_[i] != '\0'; ++i) h.image[i] = image_name_[i];
     h.config_bytes = sizeof(Config);
     h.clock_ns_per_count = clock_.ns_per_count;
+    h.sensor_signals = static_cast<std::uint16_t>(msg::signal_count_v<typename Controller::SensorFrame>);
+    h.command_signals = static_cast<std::uint16_t>(msg::signal_count_v<typename Controller::ActuatorFrame>);
     send(encoder_.encode(link::TargetFrameKind::kHello, h));
   }
 
@@ -147,7 +149,7 @@ class PilSession {
 
   // Steps next_tick_ and sends its command. t0: when the frame's handling began (link cost = everything in
   // this tick but the step).
-  void step_and_answer(const msg::SensorFrame* frame, std::int64_t t0) {
+  void step_and_answer(const typename Controller::SensorFrame* frame, std::int64_t t0) {
     const std::int64_t t1 = clock_();
     controller_->step(next_tick_, frame, command_);
     const std::int64_t t2 = clock_();
@@ -185,15 +187,17 @@ class PilSession {
   InstructionClock clock_{};
   TargetChannel channel_{};
   link::TargetFrameEncoder encoder_{kTargetSenderId, 0};
-  link::TargetFrameDecoder decoder_{/*from_host=*/true};
+  link::TargetFrameDecoder decoder_{/*from_host=*/true,
+                                   link::target_frame_sizes(msg::signal_count_v<typename Controller::SensorFrame>,
+                                                            msg::signal_count_v<typename Controller::ActuatorFrame>)};
   std::uint8_t buf_[256]{};
   std::size_t have_{0};
   std::size_t pos_{0};
   Config config_{};
   alignas(Controller) unsigned char storage_[sizeof(Controller)]{};
   Controller* controller_{nullptr};
-  msg::SensorFrame sensor_{};
-  msg::ActuatorFrame command_{};
+  typename Controller::SensorFrame sensor_{};
+  typename Controller::ActuatorFrame command_{};
   std::uint64_t next_tick_{0};
   bool answered_{false};
   std::uint64_t late_{0};

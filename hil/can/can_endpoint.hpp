@@ -66,7 +66,7 @@ namespace gyrostab::hil {
 template <>
 class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
  public:
-  FrameEndpoint(can::CanBusTransport& bus, const GuardConfig& guard)
+  FrameEndpoint(can::CanBusTransport& bus, const GuardConfig& guard, const msg::DeviceSignals& /*signals*/)
       : EndpointBook(can::can_guard_config(guard)),
         bus_(bus),
         sensor_tx_(can::Direction::kSensor, bus.nodes),
@@ -74,12 +74,12 @@ class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
         sensor_rx_(can::Direction::kSensor, bus.nodes),
         actuator_rx_(can::Direction::kActuator, bus.nodes) {}
 
-  bool send(const msg::SensorFrame& f, std::int64_t sim_time_us) {
+  bool send(const msg::AnySensorFrame& f, std::int64_t sim_time_us) {
     last_sensor_ = f;
     last_kind_ = Last::kSensor;
     return send_set(sensor_tx_, f, sim_time_us);
   }
-  bool send(const msg::ActuatorFrame& f, std::int64_t sim_time_us) {
+  bool send(const msg::AnyActuatorFrame& f, std::int64_t sim_time_us) {
     last_actuator_ = f;
     last_kind_ = Last::kActuator;
     return send_set(actuator_tx_, f, sim_time_us);
@@ -93,10 +93,10 @@ class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
                                        : send_set(actuator_tx_, last_actuator_, last_sim_us_);
   }
 
-  RxStatus receive(std::int64_t deadline_ns, msg::SensorFrame& out, std::int64_t* sim_time_us = nullptr) {
+  RxStatus receive(std::int64_t deadline_ns, msg::AnySensorFrame& out, std::int64_t* sim_time_us = nullptr) {
     return receive_set(sensor_rx_, deadline_ns, out, sim_time_us);
   }
-  RxStatus receive(std::int64_t deadline_ns, msg::ActuatorFrame& out, std::int64_t* sim_time_us = nullptr) {
+  RxStatus receive(std::int64_t deadline_ns, msg::AnyActuatorFrame& out, std::int64_t* sim_time_us = nullptr) {
     return receive_set(actuator_rx_, deadline_ns, out, sim_time_us);
   }
 
@@ -243,8 +243,8 @@ class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
   can::SetAssembler sensor_rx_, actuator_rx_;
   std::array<can::CanFrame, can::kMaxMessagesPerDirection> tx_{};
   std::array<can::CanFrame, can::kMaxMessagesPerDirection> rx_set_{};
-  msg::SensorFrame last_sensor_{};
-  msg::ActuatorFrame last_actuator_{};
+  msg::AnySensorFrame last_sensor_{};
+  msg::AnyActuatorFrame last_actuator_{};
   Last last_kind_{Last::kNone};
   std::int64_t last_sim_us_{0};
   std::int64_t last_send_ns_{0};

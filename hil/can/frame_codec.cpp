@@ -92,12 +92,12 @@ FrameEncoder::FrameEncoder(Direction direction, NodeSet nodes) : direction_(dire
     if (m.direction == direction && message_present(m, nodes)) ++count_;
 }
 
-std::size_t FrameEncoder::encode(const msg::SensorFrame& f, std::span<CanFrame> out, FieldViolation* violation) {
+std::size_t FrameEncoder::encode(const msg::AnySensorFrame& f, std::span<CanFrame> out, FieldViolation* violation) {
   if (direction_ != Direction::kSensor) return 0;
   return encode_bytes(reinterpret_cast<const std::uint8_t*>(&f), out, violation);
 }
 
-std::size_t FrameEncoder::encode(const msg::ActuatorFrame& f, std::span<CanFrame> out, FieldViolation* violation) {
+std::size_t FrameEncoder::encode(const msg::AnyActuatorFrame& f, std::span<CanFrame> out, FieldViolation* violation) {
   if (direction_ != Direction::kActuator) return 0;
   return encode_bytes(reinterpret_cast<const std::uint8_t*>(&f), out, violation);
 }
@@ -267,8 +267,9 @@ FrameError SetAssembler::accept(const CanFrame& f) {
 }
 
 bool SetAssembler::take_bytes(std::uint8_t* out, std::size_t size, Direction d) {
-  if (!ready_ || d != direction_ || size != contract_size_) return false;
-  std::memcpy(out, ready_bytes_.data(), size);
+  if (!ready_ || d != direction_ || size < contract_size_) return false;
+  std::memcpy(out, ready_bytes_.data(), contract_size_);
+  std::memset(out + contract_size_, 0, size - contract_size_);
   ready_ = false;
   if (ready_tick_ + 1 > expected_) expected_ = ready_tick_ + 1;
   return true;
@@ -282,11 +283,11 @@ std::size_t SetAssembler::ready_frames(std::span<CanFrame> out) const {
   return n;
 }
 
-bool SetAssembler::take(msg::SensorFrame& out) {
+bool SetAssembler::take(msg::AnySensorFrame& out) {
   return take_bytes(reinterpret_cast<std::uint8_t*>(&out), sizeof(out), Direction::kSensor);
 }
 
-bool SetAssembler::take(msg::ActuatorFrame& out) {
+bool SetAssembler::take(msg::AnyActuatorFrame& out) {
   return take_bytes(reinterpret_cast<std::uint8_t*>(&out), sizeof(out), Direction::kActuator);
 }
 

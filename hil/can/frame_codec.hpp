@@ -1,4 +1,4 @@
-// Encoder and decoder between the interface contract (msg::SensorFrame, msg::ActuatorFrame) and the CAN FD
+// Encoder and decoder between the interface contract (msg::AnySensorFrame, msg::AnyActuatorFrame) and the CAN FD
 // frames of hil/can/frame_map.hpp.
 //
 // FrameEncoder: one contract frame → the frames of its direction that the device's nodes send, header last,
@@ -31,6 +31,7 @@
 
 #include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/sensor_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
 #include "hil/can/can_frame.hpp"
 #include "hil/can/frame_map.hpp"
 
@@ -88,8 +89,13 @@ class FrameEncoder {
 
   // The frames of one sensor (kSensor) or actuator (kActuator) frame into out (capacity ≥ frames_per_set()),
   // header last. Returns the number written, or 0 (and *violation) when a field of an absent node is not zero.
-  std::size_t encode(const msg::SensorFrame& f, std::span<CanFrame> out, FieldViolation* violation = nullptr);
-  std::size_t encode(const msg::ActuatorFrame& f, std::span<CanFrame> out, FieldViolation* violation = nullptr);
+  std::size_t encode(const msg::AnySensorFrame& f, std::span<CanFrame> out, FieldViolation* violation = nullptr);
+  std::size_t encode(const msg::AnyActuatorFrame& f, std::span<CanFrame> out, FieldViolation* violation = nullptr);
+  // A device's typed frame (its bytes are the generic frame's first ones).
+  template <msg::TypedFrame Frame>
+  std::size_t encode(const Frame& f, std::span<CanFrame> out, FieldViolation* violation = nullptr) {
+    return encode(msg::any_of(f), out, violation);
+  }
 
   std::size_t frames_per_set() const { return count_; }
   Direction direction() const { return direction_; }
@@ -115,8 +121,15 @@ class SetAssembler {
   std::uint64_t ready_tick() const { return ready_tick_; }
   // Copy the completed set out and clear ready(); the receiver then expects ready_tick() + 1. The overload
   // must match the direction (sensor sets for kSensor); false when nothing is ready or it does not.
-  bool take(msg::SensorFrame& out);
-  bool take(msg::ActuatorFrame& out);
+  bool take(msg::AnySensorFrame& out);
+  bool take(msg::AnyActuatorFrame& out);
+  template <msg::TypedFrame Frame>
+  bool take(Frame& out) {
+    decltype(msg::any_of(out)) any{};
+    if (!take(any)) return false;
+    msg::from_any(any, out);
+    return true;
+  }
   // The frames of the completed set as received, in map order (the header last): what the link envelope's MAC
   // covers (link_seal.hpp). Returns their number (0 when nothing is ready).
   std::size_t ready_frames(std::span<CanFrame> out) const;
@@ -149,11 +162,11 @@ class SetAssembler {
   std::uint16_t building_tag_{0};
   std::uint32_t have_{0};
   std::uint64_t building_tick_{0};  // valid once the header is in (have_ has the header's bit)
-  alignas(8) std::array<std::uint8_t, sizeof(msg::SensorFrame)> building_bytes_{};
+  alignas(8) std::array<std::uint8_t, sizeof(msg::AnySensorFrame)> building_bytes_{};
   // Completed set.
   bool ready_{false};
   std::uint64_t ready_tick_{0};
-  alignas(8) std::array<std::uint8_t, sizeof(msg::SensorFrame)> ready_bytes_{};
+  alignas(8) std::array<std::uint8_t, sizeof(msg::AnySensorFrame)> ready_bytes_{};
   std::array<CanFrame, kMessageCount> building_frames_{};  // by message index
   std::array<CanFrame, kMessageCount> ready_frames_{};
   RxCounters counters_{};
@@ -165,6 +178,7 @@ std::uint8_t frame_crc(std::uint32_t id, const std::uint8_t* data, std::size_t l
 // The number of payload bytes a message's signals use (the rest up to its length is zero padding).
 std::size_t used_bytes(const MessageSpec& m);
 
-static_assert(sizeof(msg::SensorFrame) >= sizeof(msg::ActuatorFrame));
+static_assert(sizeof(msg::AnySensorFrame) >= sizeof(msg::AnyActuatorFrame));
+static_assert(sizeof(msg::SensorFrame) <= sizeof(msg::AnySensorFrame));
 
 }  // namespace gyrostab::can

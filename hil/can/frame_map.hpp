@@ -193,9 +193,9 @@ inline constexpr SignalSpec kImuSignals[] = {
         {"motor_current_" #n, 160, 64, SignalKind::kDouble, off<double>(GYROSTAB_CAN_SOFF(motor_current_A), axis), \
          1, 0, kR.motor_current_A[axis].min, kR.motor_current_A[axis].max, "A",                                 \
          "torque motor winding current of axis " #n},                                                           \
-        {"encoder_count_" #n, 224, 32, SignalKind::kSigned,                                                      \
-         off<std::int32_t>(GYROSTAB_CAN_SOFF(encoder_count), axis), 1, 0, kI32Min, kI32Max, "counts",           \
-         "raw motor-side encoder count of axis " #n ", wraps at 2^32"},                                         \
+        {"encoder_count_" #n, 224, 64, SignalKind::kDouble,                                                      \
+         off<double>(GYROSTAB_CAN_SOFF(encoder_count), axis), 1, 0, kI32Min, kI32Max, "counts",                 \
+         "raw motor-side encoder count of axis " #n ", wraps at 2^32 (an integer, exact as a double)"},         \
   }
 inline constexpr SignalSpec kDrive1FeedbackSignals[] = GYROSTAB_CAN_DRIVE_FEEDBACK(1, msg::kAxis1);
 inline constexpr SignalSpec kDrive2FeedbackSignals[] = GYROSTAB_CAN_DRIVE_FEEDBACK(2, msg::kAxis2);
@@ -284,9 +284,9 @@ inline constexpr MessageSpec kMessages[] = {
      detail::kControllerCommandSignals,
      "command header: tick, times, status (safe state), precession brake, link envelope; completes the tick's "
      "command set"},
-    {0x181, "DRIVE1_FB", "drive1", Direction::kSensor, 32, kNodeDrive1, false, detail::kDrive1FeedbackSignals,
+    {0x181, "DRIVE1_FB", "drive1", Direction::kSensor, 48, kNodeDrive1, false, detail::kDrive1FeedbackSignals,
      "axis-1 gimbal drive feedback: angle, rate, winding current, encoder"},
-    {0x182, "DRIVE2_FB", "drive2", Direction::kSensor, 32, kNodeDrive2, false, detail::kDrive2FeedbackSignals,
+    {0x182, "DRIVE2_FB", "drive2", Direction::kSensor, 48, kNodeDrive2, false, detail::kDrive2FeedbackSignals,
      "axis-2 gimbal drive feedback: angle, rate, winding current, encoder"},
     {0x183, "CLUSTER_ANGLE_FB", "cluster", Direction::kSensor, 48, kNodeCluster, false, detail::kClusterAngleSignals,
      "gimbal angles of the four units of the cluster"},

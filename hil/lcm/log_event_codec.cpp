@@ -96,7 +96,11 @@ bool decode(const void* data, int size, SceneEvent& out, std::string& why) {
   if (!decode_message(data, size, m, why)) return false;
   if (m.log_version != kLogVersion) {
     why = "log version " + std::to_string(m.log_version) + " (this build reads version " +
-          std::to_string(kLogVersion) + ")";
+          std::to_string(kLogVersion) +
+          (m.log_version == 1 ? ": version 1 logs carry the frame every device shared before the signal tables; "
+                                "record the run again with this build"
+                              : "") +
+          ")";
     return false;
   }
   if (m.tick_ns < 1000) {

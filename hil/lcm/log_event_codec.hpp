@@ -11,7 +11,9 @@
 
 namespace gyrostab::hil {
 
-inline constexpr std::int32_t kLogVersion = 1;
+// 2: each device's frames are its own LCM types, generated from its signal table (1: one frame shared by every
+// device).
+inline constexpr std::int32_t kLogVersion = 2;
 
 // Why a run's log ended (log_end_t.reason).
 enum class EndReason : std::int32_t { kCompleted = 0, kDiverged = 1, kSignal = 2, kOther = 3 };

@@ -1,14 +1,15 @@
-// The plant side's acceptance test of an ActuatorFrame, independent of the transport (LCM here; the CAN
-// FD transport, hil/can/, reuses it): what a drive checks before it applies a command.
-//   values   every torque, voltage, cluster rate command and the brake finite; |torque| ≤ torque limit and
-//            |voltage| ≤ voltage limit per gimbal axis, |rate command| ≤ the cluster's rate limit per unit (the
-//            scene's limits, ActuatorLimits); brake in [0, 1];
+// The plant side's acceptance test of an ActuatorFrame, independent of the transport (LCM, CAN FD, the target
+// link) and of the device: what a drive checks before it applies a command.
+//   values   every command of the device finite and within its signal table's range [min, max] (the brake
+//            in [0, 1], a torque within the drive's plausible range) and within the scene's magnitude limit
+//            (ActuatorLimits: the law's torque limit, the steering's rate limit; 0 for a command the scene's
+//            hardware does not have);
 //   order    the frame is for the tick the plant expects; its sequence advances from the last accepted one
 //            (serial-number arithmetic, wraps at 2^32); an exact repeat of the last accepted frame is
 //            "repeated", an older tick or a non-advancing sequence "stale", a later tick "ahead".
 // A frame that fails either is rejected whole and counted; the plant then treats the tick as having no
 // command: the drive's watchdog gives zero torque (see drive_watchdog_command()).
-// O(1), no heap, no I/O.
+// O(commands), no heap, no I/O.
 #pragma once
 
 #include <cmath>
@@ -17,46 +18,60 @@
 #include <limits>
 
 #include "firmware/msg/actuator_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
+#include "firmware/msg/signal_spec.hpp"
 #include "hil/link/link_counters.hpp"
 
 namespace gyrostab::hil {
 
-// Magnitude limits of the commands a plant accepts, per gimbal axis. Default: no magnitude limit (finite
-// only).
+// Magnitude limits of the commands a plant's drives accept, per command value in the device's frame order, on
+// top of the signal table's range. Default: none (the table's range only).
 struct ActuatorLimits {
-  // A torque-mode drive with one limit on both axes (the voltages are unused: no limit).
-  static ActuatorLimits torque_limited(double limit_Nm) {
+  // The limits as a typed actuator frame whose command fields hold each command's magnitude limit
+  // (+infinity: none; 0: the scene's hardware has no such drive).
+  template <msg::TypedFrame Frame>
+  static ActuatorLimits of(const Frame& limits) {
     ActuatorLimits l;
-    l.torque_Nm[0] = l.torque_Nm[1] = limit_Nm;
+    for (std::size_t i = 0; i < msg::signal_count_v<Frame>; ++i) l.magnitude[i] = msg::signal_value(limits, i);
     l.from_scene = true;
     return l;
   }
+  // A typed actuator frame with every command unlimited, to set a scene's limits on (of()).
+  template <msg::TypedFrame Frame>
+  static Frame unlimited() {
+    Frame f{};
+    for (std::size_t i = 0; i < msg::signal_count_v<Frame>; ++i)
+      msg::set_signal_value(f, i, std::numeric_limits<double>::infinity());
+    return f;
+  }
 
-  double torque_Nm[msg::kGimbalAxes]{std::numeric_limits<double>::infinity(),
-                                     std::numeric_limits<double>::infinity()};  // |torque| ≤ this [N m]
-  double voltage_V[msg::kGimbalAxes]{std::numeric_limits<double>::infinity(),
-                                     std::numeric_limits<double>::infinity()};  // |voltage| ≤ this [V]
-  double cluster_rate_rad_s{std::numeric_limits<double>::infinity()};  // |cluster rate command| ≤ this [rad/s]
-  bool from_scene{
-      false};  // false: the device gave no limits (only finiteness and the brake range are checked)
+  // A torque-mode drive of the shared legacy frame: one limit on both gimbal torques.
+  static ActuatorLimits torque_limited(double limit_Nm) {
+    msg::ActuatorFrame f = unlimited<msg::ActuatorFrame>();
+    f.gimbal_torque_Nm[0] = f.gimbal_torque_Nm[1] = limit_Nm;
+    return of(f);
+  }
+
+  double magnitude[msg::kMaxCommandSignals]{
+      kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf};
+  bool from_scene{false};  // false: the device gave no limits (its table's ranges only)
+
+ private:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
 };
+static_assert(msg::kMaxCommandSignals == 16, "ActuatorLimits' initializer has one +inf per command value");
 
 enum class ActuatorVerdict { kOk, kNonFinite, kOutOfRange };
 
-inline ActuatorVerdict check_actuator_values(const msg::ActuatorFrame& f, const ActuatorLimits& lim) {
-  bool finite = std::isfinite(f.precession_brake);
-  for (std::size_t a = 0; a < msg::kGimbalAxes; ++a) {
-    finite = finite && std::isfinite(f.gimbal_torque_Nm[a]) && std::isfinite(f.motor_voltage_V[a]);
-  }
-  for (std::size_t u = 0; u < msg::kClusterUnits; ++u) finite = finite && std::isfinite(f.cluster_rate_command_rad_s[u]);
-  if (!finite) return ActuatorVerdict::kNonFinite;
-  if (f.precession_brake < 0.0 || f.precession_brake > 1.0) return ActuatorVerdict::kOutOfRange;
-  for (std::size_t a = 0; a < msg::kGimbalAxes; ++a) {
-    if (std::fabs(f.gimbal_torque_Nm[a]) > lim.torque_Nm[a]) return ActuatorVerdict::kOutOfRange;
-    if (std::fabs(f.motor_voltage_V[a]) > lim.voltage_V[a]) return ActuatorVerdict::kOutOfRange;
-  }
-  for (std::size_t u = 0; u < msg::kClusterUnits; ++u) {
-    if (std::fabs(f.cluster_rate_command_rad_s[u]) > lim.cluster_rate_rad_s) return ActuatorVerdict::kOutOfRange;
+inline ActuatorVerdict check_actuator_values(const msg::AnyActuatorFrame& f, const msg::DeviceSignals& device,
+                                             const ActuatorLimits& lim) {
+  const std::size_t n = device.commands.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(f.signal[i])) return ActuatorVerdict::kNonFinite;
+  for (std::size_t i = 0; i < n; ++i) {
+    const msg::SignalSpec& s = device.commands[i];
+    const double v = f.signal[i];
+    if (v < s.min || v > s.max || std::fabs(v) > lim.magnitude[i]) return ActuatorVerdict::kOutOfRange;
   }
   return ActuatorVerdict::kOk;
 }
@@ -127,8 +142,8 @@ inline void count_order_rejection(OrderVerdict v, LinkCounters& c) {
 // as a real drive's command watchdog does. The precession brake is released (0): engaging it is the
 // controller's decision (its safe state commands brake = 1); a drive has no business locking the gimbal, and
 // a plant whose brake is spring-applied on power loss would model that in its own brake, not here.
-inline msg::ActuatorFrame drive_watchdog_command(std::uint64_t tick) {
-  msg::ActuatorFrame f{};
+inline msg::AnyActuatorFrame drive_watchdog_command(std::uint64_t tick) {
+  msg::AnyActuatorFrame f{};
   f.tick = tick;
   return f;
 }

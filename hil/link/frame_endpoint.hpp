@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include "hil/lcm/frame_codec.hpp"
 #include "hil/link/endpoint_book.hpp"
@@ -34,18 +35,16 @@ inline GuardConfig controller_guard(std::uint64_t own_id, std::uint64_t session,
 template <class Transport>
 class FrameEndpoint : public EndpointBook {
  public:
-  FrameEndpoint(Transport& transport, const GuardConfig& guard) : EndpointBook(guard), transport_(transport) {}
+  FrameEndpoint(Transport& transport, const GuardConfig& guard, const msg::DeviceSignals& signals)
+      : EndpointBook(guard), transport_(transport), signals_(signals) {}
 
-  // Encodes, secures and publishes `f`; the frame's bytes are kept for resend(). false: encoding or the
-  // transport failed.
-  template <class Frame>
+  // Encodes, secures and publishes `f` (a device-independent frame, or the device's typed one); the frame's
+  // bytes are kept for resend(). false: encoding or the transport failed.
+  bool send(const msg::AnySensorFrame& f, std::int64_t sim_time_us) { return send_any(f, sim_time_us); }
+  bool send(const msg::AnyActuatorFrame& f, std::int64_t sim_time_us) { return send_any(f, sim_time_us); }
+  template <msg::TypedFrame Frame>
   bool send(const Frame& f, std::int64_t sim_time_us) {
-    last_size_ = encode(f, sim_time_us, tx_.data(), static_cast<int>(tx_.size()));
-    if (last_size_ < 0) {
-      ++counters_.send_errors;
-      return false;
-    }
-    return secure_and_publish();
+    return send_any(msg::any_of(f), sim_time_us);
   }
 
   // Publishes the last sent frame again with the next freshness value (lockstep recovery of a lost datagram:
@@ -56,10 +55,41 @@ class FrameEndpoint : public EndpointBook {
     return secure_and_publish();
   }
 
-  // Waits until CLOCK_MONOTONIC deadline_ns for a message that decodes as `Frame`. kMessage: `out` holds it
-  // (and *sim_time_us its simulated time). Messages that do not decode are counted and skipped.
-  template <class Frame>
+  // Waits until CLOCK_MONOTONIC deadline_ns for a message that decodes as the frame asked for (the device's:
+  // device-independent or typed). kMessage: `out` holds it (and *sim_time_us its simulated time). Messages that
+  // do not decode are counted and skipped.
+  RxStatus receive(std::int64_t deadline_ns, msg::AnySensorFrame& out, std::int64_t* sim_time_us = nullptr) {
+    return receive_any(deadline_ns, out, sim_time_us);
+  }
+  RxStatus receive(std::int64_t deadline_ns, msg::AnyActuatorFrame& out, std::int64_t* sim_time_us = nullptr) {
+    return receive_any(deadline_ns, out, sim_time_us);
+  }
+  template <msg::TypedFrame Frame>
   RxStatus receive(std::int64_t deadline_ns, Frame& out, std::int64_t* sim_time_us = nullptr) {
+    decltype(msg::any_of(out)) any{};
+    const RxStatus s = receive_any(deadline_ns, any, sim_time_us);
+    if (s == RxStatus::kMessage) msg::from_any(any, out);
+    return s;
+  }
+
+  // Binds to the peer of the frame last returned by receive() (the handshake frame).
+  void bind_to_last() { guard_.bind(last_rx_); }
+  // The envelope of the frame last returned by receive().
+  const LinkEnvelope& last_envelope() const { return last_rx_; }
+
+ private:
+  template <class Frame>
+  bool send_any(const Frame& f, std::int64_t sim_time_us) {
+    last_size_ = encode(f, signals_, sim_time_us, tx_.data(), static_cast<int>(tx_.size()));
+    if (last_size_ < 0) {
+      ++counters_.send_errors;
+      return false;
+    }
+    return secure_and_publish();
+  }
+
+  template <class Frame>
+  RxStatus receive_any(std::int64_t deadline_ns, Frame& out, std::int64_t* sim_time_us) {
     for (;;) {
       Message m;
       const RxStatus s = transport_.receive(deadline_ns, m);
@@ -69,7 +99,7 @@ class FrameEndpoint : public EndpointBook {
       }
       ++counters_.received;
       LinkEnvelope e;
-      switch (decode(m.data, m.data == nullptr ? -1 : m.size, out, sim_time_us, &e)) {
+      switch (decode(m.data, m.data == nullptr ? -1 : m.size, signals_, out, sim_time_us, &e)) {
         case DecodeError::kOk:
           if (guard_.check(e, std::span(m.data, static_cast<std::size_t>(mac_covered_bytes(m.size)))) !=
               GuardVerdict::kOk) {
@@ -90,12 +120,6 @@ class FrameEndpoint : public EndpointBook {
     }
   }
 
-  // Binds to the peer of the frame last returned by receive() (the handshake frame).
-  void bind_to_last() { guard_.bind(last_rx_); }
-  // The envelope of the frame last returned by receive().
-  const LinkEnvelope& last_envelope() const { return last_rx_; }
-
- private:
   bool secure_and_publish() {
     write_envelope(tx_.data(), last_size_, guard_.header());
     const LinkEnvelope e = guard_.protect(std::span<const std::uint8_t>(
@@ -113,9 +137,9 @@ class FrameEndpoint : public EndpointBook {
     return true;
   }
 
-  static constexpr int kTxBytes =
-      kSensorEncodedSize > kActuatorEncodedSize ? kSensorEncodedSize : kActuatorEncodedSize;
+  static constexpr int kTxBytes = kMaxEncodedSize;
   Transport& transport_;
+  const msg::DeviceSignals& signals_;
   LinkEnvelope last_rx_{};
   std::array<std::uint8_t, kTxBytes> tx_{};
   int last_size_{0};

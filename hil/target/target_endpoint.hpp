@@ -43,7 +43,8 @@ struct TargetBus {
   QemuTarget qemu;
   QemuLaunch launch;
   firmware::link::TargetFrameEncoder encoder{0, 0};
-  firmware::link::TargetFrameDecoder decoder{/*from_host=*/false};
+  firmware::link::TargetFrameDecoder decoder{/*from_host=*/false, {}};  // frame sizes: set_device()
+  const msg::DeviceSignals* signals{nullptr};
   std::array<std::uint8_t, 4096> rx{};
   std::size_t rx_have{0}, rx_pos{0};
   std::int64_t write_timeout_ns{1'000'000'000};
@@ -54,6 +55,22 @@ struct TargetBus {
   firmware::link::TargetConfigVerdict verdict{};
   firmware::link::TargetProfile profile{};
   bool have_profile{false};
+
+  // The scene's device: its frames' sizes on the link. Before open_target_session().
+  void set_device(const msg::DeviceSignals& d) {
+    signals = &d;
+    decoder.set_frame_sizes(firmware::link::target_frame_sizes(d.sensors.size(), d.commands.size()));
+  }
+  // A sensor frame as the device's typed frame's bytes.
+  std::span<const std::uint8_t> encode_sensor(const msg::AnySensorFrame& f) {
+    return encoder.encode(firmware::link::TargetFrameKind::kSensor, &f, decoder.frame_sizes().sensor);
+  }
+  // An accepted actuator frame's payload as the device-independent frame (the signals past the device's zero).
+  static msg::AnyActuatorFrame actuator_of(const firmware::link::TargetFrameView& f) {
+    msg::AnyActuatorFrame a{};
+    std::memcpy(&a, f.payload.data(), std::min(f.payload.size(), sizeof a));
+    return a;
+  }
 
   // Writes one encoded frame. false: the emulator is gone or does not read.
   bool write(std::span<const std::uint8_t> bytes) {
@@ -122,16 +139,17 @@ nlohmann::json target_link_json(TargetBus& bus);
 template <>
 class FrameEndpoint<TargetBus> : public EndpointBook {
  public:
-  FrameEndpoint(TargetBus& bus, const GuardConfig& guard) : EndpointBook(guard), bus_(bus) {
+  FrameEndpoint(TargetBus& bus, const GuardConfig& guard, const msg::DeviceSignals& /*signals: TargetBus::set_device*/)
+      : EndpointBook(guard), bus_(bus) {
     guard_.bind(LinkEnvelope{bus.image_sender, guard.session, 0, 0});
   }
 
-  bool send(const msg::SensorFrame& f, std::int64_t /*sim_time_us*/) {
+  bool send(const msg::AnySensorFrame& f, std::int64_t /*sim_time_us*/) {
     last_ = f;
     have_last_ = true;
     return transmit(true);
   }
-  bool send(const msg::ActuatorFrame&, std::int64_t) { return false; }  // the plant sends sensor frames only
+  bool send(const msg::AnyActuatorFrame&, std::int64_t) { return false; }  // the plant sends sensor frames only
 
   bool resend() {
     if (!have_last_) return false;
@@ -153,9 +171,9 @@ class FrameEndpoint<TargetBus> : public EndpointBook {
         return s;
       }
       ++counters_.received;
-      if constexpr (std::is_same_v<Frame, msg::ActuatorFrame>) {
+      if constexpr (std::is_same_v<Frame, msg::AnyActuatorFrame>) {
         if (f.kind == firmware::link::TargetFrameKind::kActuator) {
-          std::memcpy(&out, f.payload.data(), sizeof out);
+          out = TargetBus::actuator_of(f);
           if (sim_time_us != nullptr) *sim_time_us = 0;
           return RxStatus::kMessage;
         }
@@ -186,7 +204,7 @@ class FrameEndpoint<TargetBus> : public EndpointBook {
       bus_.injected.frozen_at = k;
     }
     if (first && TargetFaults::covers(fl.skip_from, fl.skip_count, k)) {
-      (void)bus_.encoder.encode(firmware::link::TargetFrameKind::kSensor, last_);  // a counter value unsent
+      (void)bus_.encode_sensor(last_);  // a counter value unsent
       ++bus_.injected.skipped;
     }
     std::span<const std::uint8_t> bytes;
@@ -194,7 +212,7 @@ class FrameEndpoint<TargetBus> : public EndpointBook {
       bytes = std::span<const std::uint8_t>(last_wire_.data(), last_wire_size_);  // the previous bytes again
       ++bus_.injected.stale;
     } else {
-      bytes = bus_.encoder.encode(firmware::link::TargetFrameKind::kSensor, last_);
+      bytes = bus_.encode_sensor(last_);
       std::memcpy(last_wire_.data(), bytes.data(), bytes.size());
       last_wire_size_ = bytes.size();
     }
@@ -217,7 +235,7 @@ class FrameEndpoint<TargetBus> : public EndpointBook {
   }
 
   TargetBus& bus_;
-  msg::SensorFrame last_{};
+  msg::AnySensorFrame last_{};
   bool have_last_{false};
   std::array<std::uint8_t, firmware::link::kMaxTargetWire> last_wire_{};
   std::size_t last_wire_size_{0};

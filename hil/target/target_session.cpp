@@ -42,9 +42,16 @@ std::string open_target_session(TargetBus& bus, std::uint32_t session, std::uint
   if (image != bus.launch.device) {
     return "the image " + bus.launch.image + " runs the " + image + " controller, not " + bus.launch.device;
   }
-  if (bus.hello.frame_version != firmware::link::TargetHello{}.frame_version) {
+  if (bus.hello.frame_version != firmware::link::kTargetFrameVersion) {
     return "the image speaks target-link version " + std::to_string(bus.hello.frame_version) + ", this build " +
-           std::to_string(firmware::link::TargetHello{}.frame_version) + " (rebuild the image)";
+           std::to_string(firmware::link::kTargetFrameVersion) + " (rebuild the image)";
+  }
+  if (bus.signals != nullptr && (bus.hello.sensor_signals != bus.signals->sensors.size() ||
+                                 bus.hello.command_signals != bus.signals->commands.size())) {
+    return "the image's " + image + " frames carry " + std::to_string(bus.hello.sensor_signals) + " sensor and " +
+           std::to_string(bus.hello.command_signals) + " command signals, this build's signal table " +
+           std::to_string(bus.signals->sensors.size()) + " and " + std::to_string(bus.signals->commands.size()) +
+           " (rebuild the image)";
   }
   if (bus.hello.config_bytes != config.size()) {
     return "the image's " + image + " configuration has " + std::to_string(bus.hello.config_bytes) +

@@ -11,7 +11,9 @@
 #include <cstring>
 #include <limits>
 
+#include "firmware/msg/sensor_frame.hpp"
 #include "hil/lcm/frame_codec.hpp"
+#include "tools/signals/device_signals.hpp"
 #include "tests/lcm/lcm_test_support.hpp"
 
 namespace gyrostab::testing {
@@ -30,11 +32,12 @@ struct Forger {
   // the sender ids (without a link key nothing more is needed), so its frames reach the order and value
   // checks, which are what this test is about.
   hil::LinkEnvelope envelope{};
+  const msg::DeviceSignals& device = tools::find_device_signals("monorail");
 
   template <class Frame>
   void publish(const std::string& channel, const Frame& f, int size_delta = 0, bool bad_fingerprint = false) {
     std::uint8_t buf[512] = {};
-    const int n = hil::encode(f, 0, buf, static_cast<int>(sizeof buf), envelope);
+    const int n = hil::encode(msg::any_of(f), device, 0, buf, static_cast<int>(sizeof buf), envelope);
     if (bad_fingerprint) buf[3] ^= 0x40;
     lcm_publish(lcm, channel.c_str(), buf, static_cast<unsigned>(n + size_delta));
     ++forged;
@@ -108,15 +111,21 @@ struct Forger {
 void on_message(const lcm_recv_buf_t* rbuf, const char* channel, void* user) {
   auto* f = static_cast<Forger*>(user);
   if (kSensorChannel == channel) {
+    msg::AnySensorFrame any{};
     msg::SensorFrame s{};
-    if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), s, nullptr, &f->envelope) ==
-        hil::DecodeError::kOk)
+    if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), f->device, any, nullptr, &f->envelope) ==
+        hil::DecodeError::kOk) {
+      msg::from_any(any, s);
       f->on_sensor(s);
+    }
   } else {
+    msg::AnyActuatorFrame any{};
     msg::ActuatorFrame a{};
-    if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), a, nullptr, &f->envelope) ==
-        hil::DecodeError::kOk)
+    if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), f->device, any, nullptr, &f->envelope) ==
+        hil::DecodeError::kOk) {
+      msg::from_any(any, a);
       f->on_actuator(a);
+    }
   }
 }
 

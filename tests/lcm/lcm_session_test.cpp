@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "hil/lcm/frame_codec.hpp"
+#include "tools/signals/device_signals.hpp"
 #include "tests/lcm/lcm_test_support.hpp"
 
 namespace gyrostab::testing {
@@ -100,27 +101,30 @@ struct Forger {
   lcm_t* lcm{nullptr};
   std::string actuator_channel;
   std::uint64_t forged{0};
+  const msg::DeviceSignals& device = tools::find_device_signals("monorail");
 
-  void on_actuator(const msg::ActuatorFrame& a, const hil::LinkEnvelope& e) {
-    if (a.gimbal_torque_Nm[msg::kAxis2] == 1999.0) return;  // one of ours
-    msg::ActuatorFrame f = a;
+  void on_actuator(const msg::AnyActuatorFrame& a, const hil::LinkEnvelope& e) {
+    if (a.signal[0] == 1999.0) return;  // one of ours
+    msg::AnyActuatorFrame f = a;
     f.tick += 1;
     f.sequence += 1;
-    f.gimbal_torque_Nm[msg::kAxis2] = 1999.0;
+    f.signal[0] = 1999.0;  // the monorail's motor torque
     hil::LinkEnvelope fe = e;
     fe.freshness += 1;
-    std::uint8_t buf[256];
-    const int n = hil::encode(f, 0, buf, sizeof buf, fe);
+    std::uint8_t buf[hil::kMaxEncodedSize];
+    const int n = hil::encode(f, device, 0, buf, sizeof buf, fe);
     lcm_publish(lcm, actuator_channel.c_str(), buf, static_cast<unsigned>(n));
     ++forged;
   }
 };
 
 void on_actuator_message(const lcm_recv_buf_t* rbuf, const char*, void* user) {
-  msg::ActuatorFrame a{};
+  msg::AnyActuatorFrame a{};
   hil::LinkEnvelope e;
-  if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), a, nullptr, &e) == hil::DecodeError::kOk)
-    static_cast<Forger*>(user)->on_actuator(a, e);
+  auto* forger = static_cast<Forger*>(user);
+  if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), forger->device, a, nullptr, &e) ==
+      hil::DecodeError::kOk)
+    forger->on_actuator(a, e);
 }
 
 TEST(LcmSession, WithAKeyAForgerOnTheBusChangesNoCommand) {

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "hil/lcm/frame_codec.hpp"
+#include "tools/signals/device_signals.hpp"
 #include "sim/random/seeded_rng.hpp"
 #include "tests/support/bus_log_fixtures.hpp"
 #include "tests/support/shipped_scenes.hpp"
@@ -24,6 +25,12 @@ constexpr std::int64_t kTicks = 400;
 constexpr std::int64_t kFlipTick = 237;  // not a multiple of 10: off the control ticks of the 10 kHz drive scene
 constexpr int kHeaderBytes = 28;         // LCM event header before the channel name
 
+std::string scene_device(const std::string& log) {
+  BusLogReader r;
+  EXPECT_EQ(r.open(log), ReadStatus::kOk) << r.problem();
+  return r.scene().device;
+}
+
 std::vector<TickRecord> read_ticks(const std::string& log) {
   BusLogReader r;
   EXPECT_EQ(r.open(log), ReadStatus::kOk) << r.problem();
@@ -35,15 +42,18 @@ std::vector<TickRecord> read_ticks(const std::string& log) {
 
 // The log with one bit of tick kFlipTick's sensor frame flipped, made by re-encoding the frame with the field
 // changed; checks that exactly one bit of the file differs.
+template <class Change>
 std::vector<std::uint8_t> with_sensor_change(const std::vector<std::uint8_t>& log, const TickRecord& t,
-                                             void (*change)(msg::SensorFrame&), const std::string& channel) {
+                                             const msg::DeviceSignals& device, Change change,
+                                             const std::string& channel) {
   std::vector<std::uint8_t> out = log;
   const std::size_t at = static_cast<std::size_t>(t.sensor_offset) + kHeaderBytes + channel.size();
-  msg::SensorFrame f{};
+  const int size = hil::sensor_encoded_size(device);
+  msg::AnySensorFrame f{};
   std::int64_t sim_us = 0;
-  EXPECT_EQ(hil::decode(&log[at], hil::kSensorEncodedSize, f, &sim_us), hil::DecodeError::kOk);
+  EXPECT_EQ(hil::decode(&log[at], size, device, f, &sim_us), hil::DecodeError::kOk);
   change(f);
-  EXPECT_EQ(hil::encode(f, sim_us, &out[at], hil::kSensorEncodedSize), hil::kSensorEncodedSize);
+  EXPECT_EQ(hil::encode(f, device, sim_us, &out[at], size), size);
   int bits = 0;
   for (std::size_t i = 0; i < out.size(); ++i) bits += std::popcount(static_cast<unsigned>(out[i] ^ log[i]));
   EXPECT_EQ(bits, 1) << "the edit is not a single bit flip";
@@ -54,27 +64,28 @@ void flip_sign(double& v) {
   v = std::bit_cast<double>(std::bit_cast<std::uint64_t>(v) ^ (1ull << 63));
 }
 
+// The flips of a device's sensor frame: the tick (bit 40), and the sign bit of every signal of its table.
 struct FieldFlip {
-  const char* name;
-  void (*change)(msg::SensorFrame&);
+  std::string name;
+  int signal;  // -1: the tick
+  void operator()(msg::AnySensorFrame& f) const {
+    if (signal < 0) {
+      f.tick ^= 1ull << 40;
+    } else {
+      flip_sign(f.signal[signal]);
+    }
+  }
 };
 
-const FieldFlip kFlips[] = {
-    {"tick bit 40", [](msg::SensorFrame& f) { f.tick ^= 1ull << 40; }},
-    {"carrier_angle_rad[0]", [](msg::SensorFrame& f) { flip_sign(f.carrier_angle_rad[0]); }},
-    {"carrier_angle_rad[1]", [](msg::SensorFrame& f) { flip_sign(f.carrier_angle_rad[1]); }},
-    {"carrier_rate_rad_s[0]", [](msg::SensorFrame& f) { flip_sign(f.carrier_rate_rad_s[0]); }},
-    {"carrier_rate_rad_s[1]", [](msg::SensorFrame& f) { flip_sign(f.carrier_rate_rad_s[1]); }},
-    {"carrier_rate_rad_s[2]", [](msg::SensorFrame& f) { flip_sign(f.carrier_rate_rad_s[2]); }},
-    {"gimbal_angle_rad[0]", [](msg::SensorFrame& f) { flip_sign(f.gimbal_angle_rad[0]); }},
-    {"gimbal_angle_rad[1]", [](msg::SensorFrame& f) { flip_sign(f.gimbal_angle_rad[1]); }},
-    {"gimbal_rate_rad_s[0]", [](msg::SensorFrame& f) { flip_sign(f.gimbal_rate_rad_s[0]); }},
-    {"gimbal_rate_rad_s[1]", [](msg::SensorFrame& f) { flip_sign(f.gimbal_rate_rad_s[1]); }},
-    {"motor_current_A[0]", [](msg::SensorFrame& f) { flip_sign(f.motor_current_A[0]); }},
-    {"motor_current_A[1]", [](msg::SensorFrame& f) { flip_sign(f.motor_current_A[1]); }},
-    {"rotor_speed_rad_s", [](msg::SensorFrame& f) { flip_sign(f.rotor_speed_rad_s); }},
-    {"encoder_count[1] bit 0", [](msg::SensorFrame& f) { f.encoder_count[1] ^= 1; }},
-};
+std::vector<FieldFlip> flips_of(const msg::DeviceSignals& d) {
+  std::vector<FieldFlip> out{{"tick bit 40", -1}};
+  for (std::size_t i = 0; i < d.sensors.size(); ++i) {
+    std::string n(d.sensors[i].name);
+    if (d.sensors[i].count > 1) n += "[" + std::to_string(d.sensors[i].element) + "]";
+    out.push_back({n, static_cast<int>(i)});
+  }
+  return out;
+}
 
 // The first tick a replay reports as differing, or -1.
 std::int64_t mismatch_tick(const std::string& out) {
@@ -93,11 +104,12 @@ TEST(BusLogBitFlip, AFlippedSensorBitIsReportedAtExactlyItsTick) {
     const auto ticks = read_ticks(log);
     ASSERT_EQ(ticks.size(), static_cast<std::size_t>(kTicks));
     const TickRecord& t = ticks[kFlipTick];
+    const msg::DeviceSignals& device = tools::find_device_signals(scene_device(log));
     int controller_saw = 0;
-    for (const FieldFlip& flip : kFlips) {
+    for (const FieldFlip& flip : flips_of(device)) {
       SCOPED_TRACE(flip.name);
       const std::string bad = dir.file("flipped.lcmlog");
-      testing::write_bytes(bad, with_sensor_change(bytes, t, flip.change, "GYROSTAB_SENSOR"), bytes.size());
+      testing::write_bytes(bad, with_sensor_change(bytes, t, device, flip, "GYROSTAB_SENSOR"), bytes.size());
       // Re-simulation recomputes every sensor frame: the first difference is the flipped frame.
       const auto resim = testing::replay(bad, /*resimulate=*/true);
       EXPECT_EQ(resim.rc, tools::kReplayExitMismatch) << resim.out;
@@ -110,7 +122,7 @@ TEST(BusLogBitFlip, AFlippedSensorBitIsReportedAtExactlyItsTick) {
       EXPECT_GE(mismatch_tick(rep.out), kFlipTick) << rep.out;
       if (mismatch_tick(rep.out) == kFlipTick) ++controller_saw;
       // A frame stamped 2^40 ticks ahead is stale to the fault monitor at once (status bits of that tick).
-      if (std::string(flip.name) == "tick bit 40") {
+      if (flip.signal < 0) {
         EXPECT_EQ(mismatch_tick(rep.out), kFlipTick) << rep.out;
       }
     }
@@ -133,7 +145,8 @@ TEST(BusLogBitFlip, RandomFlipsAnywhereAreNeverSilent) {
   // Three regions, sampled alike: the scene event, the frames, the end event.
   const std::size_t frames_begin = static_cast<std::size_t>(ticks.front().sensor_offset);
   const std::size_t end_begin = static_cast<std::size_t>(ticks.back().actuator_offset) + kHeaderBytes +
-                                std::string("GYROSTAB_ACTUATOR").size() + hil::kActuatorEncodedSize;
+                                std::string("GYROSTAB_ACTUATOR").size() +
+                                static_cast<std::size_t>(hil::actuator_encoded_size(tools::find_device_signals("monorail")));
   ASSERT_LT(end_begin, bytes.size());
   const std::size_t region[3][2] = {{0, frames_begin}, {frames_begin, end_begin}, {end_begin, bytes.size()}};
   random::SeededRng rng(20261123, 1);

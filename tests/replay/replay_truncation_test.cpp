@@ -42,7 +42,7 @@ Layout layout_of(const std::string& log) {
   l.size = r.file_size();
   // The end event follows the last actuator event (the size of every actuator event: the event header, the
   // channel name and the encoded frame).
-  l.starts.push_back(l.starts.back() + 28 + 17 + hil::kActuatorEncodedSize);
+  l.starts.push_back(l.starts.back() + 28 + 17 + hil::actuator_encoded_size(r.signals()));
   return l;
 }
 

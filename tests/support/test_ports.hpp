@@ -1,10 +1,12 @@
-// A test's controller as a ControllerPort: any class with step(tick, frame or nullptr, out), without the
-// firmware runtime's fault monitor (never in its safe state, nothing to acknowledge, no counters).
+// A test's controller as a ControllerPort: any class with step(tick, frame or nullptr, out) on typed frames
+// (the shared legacy ones unless the class names its own SensorFrame/ActuatorFrame), without the firmware
+// runtime's fault monitor (never in its safe state, nothing to acknowledge, no counters).
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <utility>
 
+#include "firmware/msg/sensor_frame.hpp"
 #include "tools/run/controller_port.hpp"
 
 namespace gyrostab::testing {
@@ -14,8 +16,12 @@ class LawPort final : public tools::ControllerPort {
  public:
   template <class... Args>
   explicit LawPort(Args&&... args) : law_(std::forward<Args>(args)...) {}
-  void step(std::uint64_t tick, const msg::SensorFrame* frame, msg::ActuatorFrame& out) override {
-    law_.step(tick, frame, out);
+  void step(std::uint64_t tick, const msg::AnySensorFrame* frame, msg::AnyActuatorFrame& out) override {
+    msg::SensorFrame in{};
+    msg::ActuatorFrame command{};
+    if (frame != nullptr) msg::from_any(*frame, in);
+    law_.step(tick, frame != nullptr ? &in : nullptr, command);
+    msg::to_any(command, out);
   }
   bool in_safe_state() const override { return false; }
   void acknowledge() override {}

@@ -36,45 +36,54 @@ msg::ActuatorFrame command(std::uint64_t tick, double torque = 1.0) {
   return a;
 }
 
-TEST(ActuatorFrameCheck, EveryNonFiniteFieldAndEveryLimitIsRefused) {
-  hil::ActuatorLimits lim;
-  lim.torque_Nm[0] = lim.torque_Nm[1] = 10.0;
-  lim.voltage_V[0] = lim.voltage_V[1] = 24.0;
-  lim.cluster_rate_rad_s = 1.0;
-  EXPECT_EQ(hil::check_actuator_values(command(0, 10.0), lim), hil::ActuatorVerdict::kOk)
-      << "the limit itself is allowed";
-  EXPECT_EQ(hil::check_actuator_values(command(0, -10.0), lim), hil::ActuatorVerdict::kOk);
-  for (int field = 0; field < 9; ++field) {
+TEST(ActuatorFrameCheck, EveryNonFiniteCommandAndEveryLimitIsRefused) {
+  msg::ActuatorFrame limits = hil::ActuatorLimits::unlimited<msg::ActuatorFrame>();
+  limits.gimbal_torque_Nm[0] = limits.gimbal_torque_Nm[1] = 10.0;
+  limits.motor_voltage_V[0] = limits.motor_voltage_V[1] = 24.0;
+  for (double& r : limits.cluster_rate_command_rad_s) r = 1.0;
+  const hil::ActuatorLimits lim = hil::ActuatorLimits::of(limits);
+  const msg::DeviceSignals& d = msg::kSignals;
+  const auto check = [&](const msg::ActuatorFrame& a, const hil::ActuatorLimits& l) {
+    return hil::check_actuator_values(msg::any_of(a), d, l);
+  };
+  EXPECT_EQ(check(command(0, 10.0), lim), hil::ActuatorVerdict::kOk) << "the limit itself is allowed";
+  EXPECT_EQ(check(command(0, -10.0), lim), hil::ActuatorVerdict::kOk);
+  for (std::size_t i = 0; i < d.commands.size(); ++i) {
     for (const double bad : {kNaN, kInf, -kInf}) {
       msg::ActuatorFrame a = command(0);
-      double* f[9] = {&a.gimbal_torque_Nm[0],           &a.gimbal_torque_Nm[1],           &a.motor_voltage_V[0],
-                      &a.motor_voltage_V[1],            &a.precession_brake,              &a.cluster_rate_command_rad_s[0],
-                      &a.cluster_rate_command_rad_s[1], &a.cluster_rate_command_rad_s[2], &a.cluster_rate_command_rad_s[3]};
-      *f[field] = bad;
-      EXPECT_EQ(hil::check_actuator_values(a, lim), hil::ActuatorVerdict::kNonFinite) << field;
+      msg::set_signal_value(a, i, bad);
+      EXPECT_EQ(check(a, lim), hil::ActuatorVerdict::kNonFinite) << d.commands[i].name;
     }
   }
   msg::ActuatorFrame a = command(0, std::nextafter(10.0, 11.0));
-  EXPECT_EQ(hil::check_actuator_values(a, lim), hil::ActuatorVerdict::kOutOfRange);
+  EXPECT_EQ(check(a, lim), hil::ActuatorVerdict::kOutOfRange);
   a = command(0);
   a.motor_voltage_V[0] = -24.5;
-  EXPECT_EQ(hil::check_actuator_values(a, lim), hil::ActuatorVerdict::kOutOfRange);
+  EXPECT_EQ(check(a, lim), hil::ActuatorVerdict::kOutOfRange);
   for (std::size_t u = 0; u < msg::kClusterUnits; ++u) {
     a = command(0);
     a.cluster_rate_command_rad_s[u] = -1.0;
-    EXPECT_EQ(hil::check_actuator_values(a, lim), hil::ActuatorVerdict::kOk) << "the limit itself, unit " << u;
+    EXPECT_EQ(check(a, lim), hil::ActuatorVerdict::kOk) << "the limit itself, unit " << u;
     a.cluster_rate_command_rad_s[u] = std::nextafter(-1.0, -2.0);
-    EXPECT_EQ(hil::check_actuator_values(a, lim), hil::ActuatorVerdict::kOutOfRange) << "unit " << u;
+    EXPECT_EQ(check(a, lim), hil::ActuatorVerdict::kOutOfRange) << "unit " << u;
   }
+  // Without the scene's limits, the signal table's range still holds: the brake in [0, 1], a torque within
+  // the drive's plausible range (its ends allowed, one ulp beyond refused).
   for (const double brake : {-0.01, 1.01}) {
     a = command(0);
     a.precession_brake = brake;
-    EXPECT_EQ(hil::check_actuator_values(a, hil::ActuatorLimits{}), hil::ActuatorVerdict::kOutOfRange)
-        << brake;
+    EXPECT_EQ(check(a, hil::ActuatorLimits{}), hil::ActuatorVerdict::kOutOfRange) << brake;
   }
-  a = command(0, 1e300);
-  EXPECT_EQ(hil::check_actuator_values(a, hil::ActuatorLimits{}), hil::ActuatorVerdict::kOk)
-      << "no limits: finite only";
+  for (std::size_t i = 0; i < d.commands.size(); ++i) {
+    const msg::SignalSpec& c = d.commands[i];
+    a = command(0, 0.0);
+    msg::set_signal_value(a, i, c.max);
+    EXPECT_EQ(check(a, hil::ActuatorLimits{}), hil::ActuatorVerdict::kOk) << c.name << " at its maximum";
+    msg::set_signal_value(a, i, std::nextafter(c.max, kInf));
+    EXPECT_EQ(check(a, hil::ActuatorLimits{}), hil::ActuatorVerdict::kOutOfRange) << c.name << " past it";
+    msg::set_signal_value(a, i, std::nextafter(c.min, -kInf));
+    EXPECT_EQ(check(a, hil::ActuatorLimits{}), hil::ActuatorVerdict::kOutOfRange) << c.name << " below it";
+  }
 }
 
 TEST(FrameOrder, ClassifiesAgainstTheExpectedTickAndTheLastAcceptedSequence) {
@@ -95,7 +104,8 @@ TEST(FrameOrder, ClassifiesAgainstTheExpectedTickAndTheLastAcceptedSequence) {
 }
 
 TEST(DriveWatchdog, IsZeroTorqueZeroVoltageBrakeReleased) {
-  const msg::ActuatorFrame z = hil::drive_watchdog_command(42);
+  msg::ActuatorFrame z{};
+  msg::from_any(hil::drive_watchdog_command(42), z);
   EXPECT_EQ(z.tick, 42u);
   EXPECT_EQ(z.gimbal_torque_Nm[0], 0.0);
   EXPECT_EQ(z.gimbal_torque_Nm[1], 0.0);
@@ -108,22 +118,22 @@ struct Ends {
   std::unique_ptr<hil::MemoryBus> bus = std::make_unique<hil::MemoryBus>();
   hil::MemoryTransport plant_side{bus->to_controller, bus->to_plant};
   hil::MemoryTransport controller_side{bus->to_plant, bus->to_controller};
-  hil::FrameEndpoint<hil::MemoryTransport> plant{plant_side, hil::plant_guard(kSession, std::nullopt)};
+  hil::FrameEndpoint<hil::MemoryTransport> plant{plant_side, hil::plant_guard(kSession, std::nullopt), msg::kSignals};
   hil::FrameEndpoint<hil::MemoryTransport> controller{controller_side,
-                                                      hil::controller_guard(kControllerId, kSession, std::nullopt)};
+                                                      hil::controller_guard(kControllerId, kSession, std::nullopt), msg::kSignals};
 };
 
 TEST(FrameEndpoint, CountsCodecRejectionsAndPassesGoodFrames) {
   Ends e;
   std::uint8_t buf[256];
-  const int n = hil::encode(command(5), 0, buf, sizeof buf, hil::LinkEnvelope{kControllerId, kSession, 1, 0});
+  const int n = hil::encode(msg::any_of(command(5)), msg::kSignals, 0, buf, sizeof buf, hil::LinkEnvelope{kControllerId, kSession, 1, 0});
   e.bus->to_plant.push(buf, n - 1);  // short
   buf[0] ^= 1;
   e.bus->to_plant.push(buf, n);  // fingerprint
   buf[0] ^= 1;
   msg::SensorFrame s{};
   std::uint8_t sbuf[256];
-  e.bus->to_plant.push(sbuf, hil::encode(s, 0, sbuf, sizeof sbuf));  // another type: its size differs
+  e.bus->to_plant.push(sbuf, hil::encode(msg::any_of(s), msg::kSignals, 0, sbuf, sizeof sbuf));  // another type: its size differs
   e.bus->to_plant.push(buf, n);                                      // good
   msg::ActuatorFrame got{};
   ASSERT_EQ(e.plant.receive(hil::monotonic_ns() + 1'000'000'000, got), hil::RxStatus::kMessage);
@@ -163,8 +173,11 @@ struct Wait {
   }
   tools::CommandWait run(std::int64_t lost_after_ns = 2'000'000'000) {
     const std::int64_t now = hil::monotonic_ns();
-    return tools::wait_for_command(e.plant, order, hil::ActuatorLimits{}, 7, hil::kNoDeadline, true,
-                                   now + lost_after_ns, s, got);
+    msg::AnyActuatorFrame any{};
+    const tools::CommandWait w = tools::wait_for_command(e.plant, order, hil::ActuatorLimits{}, msg::kSignals, 7,
+                                                         hil::kNoDeadline, true, now + lost_after_ns, s, any);
+    msg::from_any(any, got);
+    return w;
   }
 };
 
@@ -209,7 +222,7 @@ TEST(LcmTransport, MemqDeliversWholeMessagesAndMeasuresAnOversizeOne) {
   std::string error;
   // memq:// is LCM's in-process provider: a message published on the subscribed channel comes back.
   ASSERT_TRUE(t.open("memq://", "GYROSTAB_ACTUATOR_unit", "GYROSTAB_ACTUATOR_unit", 10, error)) << error;
-  hil::FrameEndpoint<hil::LcmTransport> ep(t, hil::plant_guard(kSession, std::nullopt));
+  hil::FrameEndpoint<hil::LcmTransport> ep(t, hil::plant_guard(kSession, std::nullopt), msg::kSignals);
   ASSERT_TRUE(ep.send(command(3), 3000));
   msg::ActuatorFrame a{};
   std::int64_t sim_us = 0;

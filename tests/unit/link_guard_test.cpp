@@ -44,8 +44,8 @@ msg::SensorFrame sensor(std::uint64_t tick) {
 // A plant and a controller on one in-memory bus, each with its guard.
 struct Pair {
   explicit Pair(std::optional<firmware::link::Key128> k = std::nullopt, std::uint64_t controller_session = 0)
-      : plant(plant_side, hil::plant_guard(kSession, k)),
-        controller(controller_side, hil::controller_guard(kControllerId, controller_session, k)) {}
+      : plant(plant_side, hil::plant_guard(kSession, k), msg::kSignals),
+        controller(controller_side, hil::controller_guard(kControllerId, controller_session, k), msg::kSignals) {}
   std::unique_ptr<hil::MemoryBus> bus = std::make_unique<hil::MemoryBus>();
   hil::MemoryTransport plant_side{bus->to_controller, bus->to_plant};
   hil::MemoryTransport controller_side{bus->to_plant, bus->to_controller};
@@ -90,7 +90,7 @@ TEST(LinkGuard, ASecondControllerOnTheBusIsForeignAndNeverActedOn) {
   // Another controller (its own id, the same bus, even the same session as it heard the plant's frames).
   hil::MemoryTransport intruder_side{p.bus->to_plant, p.bus->to_controller};
   hil::FrameEndpoint<hil::MemoryTransport> intruder(intruder_side,
-                                                    hil::controller_guard(0x77777777, kSession, std::nullopt));
+                                                    hil::controller_guard(0x77777777, kSession, std::nullopt), msg::kSignals);
   ASSERT_TRUE(intruder.send(command(1, -50.0), 0));
   ASSERT_TRUE(p.controller.send(command(1, 2.0), 0));
   msg::ActuatorFrame a{};
@@ -104,7 +104,7 @@ TEST(LinkGuard, AFrameOfAnotherSessionIsForeign) {
   p.handshake();
   // The plant of another pair on the same channels.
   hil::MemoryTransport other_side{p.bus->to_controller, p.bus->to_plant};
-  hil::FrameEndpoint<hil::MemoryTransport> other_plant(other_side, hil::plant_guard(0x55555555, std::nullopt));
+  hil::FrameEndpoint<hil::MemoryTransport> other_plant(other_side, hil::plant_guard(0x55555555, std::nullopt), msg::kSignals);
   ASSERT_TRUE(other_plant.send(sensor(1), 0));
   msg::SensorFrame s{};
   EXPECT_EQ(p.controller.receive(Pair::now() + 20'000'000, s), hil::RxStatus::kTimeout);
@@ -117,7 +117,7 @@ TEST(LinkGuard, ARecordedFrameIsRefused) {
   // What a bus log holds (tools/log/bus_log_writer.cpp encodes with the empty envelope: session 0), as
   // lcm-logplayer would put it on the bus.
   std::uint8_t buf[256];
-  const int n = hil::encode(command(1, 9.0), 0, buf, sizeof buf);
+  const int n = hil::encode(msg::any_of(command(1, 9.0)), msg::kSignals, 0, buf, sizeof buf);
   p.bus->to_plant.push(buf, n);
   msg::ActuatorFrame a{};
   EXPECT_EQ(p.plant.receive(Pair::now() + 20'000'000, a), hil::RxStatus::kTimeout);
@@ -129,7 +129,7 @@ TEST(LinkGuard, SenderZeroIsNobodyAndCannotBeBoundTo) {
   // Found by link_guard_fuzz: a handshake command from sender 0 bound the plant to "nobody", which left it
   // open to every sender of the session.
   std::uint8_t buf[256];
-  const int n = hil::encode(command(0, 7.0), 0, buf, sizeof buf, hil::LinkEnvelope{0, kSession, 1, 0});
+  const int n = hil::encode(msg::any_of(command(0, 7.0)), msg::kSignals, 0, buf, sizeof buf, hil::LinkEnvelope{0, kSession, 1, 0});
   p.bus->to_plant.push(buf, n);
   msg::ActuatorFrame a{};
   EXPECT_EQ(p.plant.receive(Pair::now() + 20'000'000, a), hil::RxStatus::kTimeout);
@@ -145,7 +145,7 @@ TEST(LinkGuard, WithAKeyAForgerWhoCopiesTheEnvelopeChangesNothing) {
   // that moved the receiver's freshness would lock the genuine controller out.
   hil::MemoryTransport forger_side{p.bus->to_plant, p.bus->to_controller};
   hil::FrameEndpoint<hil::MemoryTransport> forger(forger_side,
-                                                  hil::controller_guard(kControllerId, kSession, key(99)));
+                                                  hil::controller_guard(kControllerId, kSession, key(99)), msg::kSignals);
   constexpr std::uint64_t kTicks = 200;
   for (std::uint64_t k = 1; k <= kTicks; ++k) {
     for (int i = 0; i < 3; ++i) ASSERT_TRUE(forger.send(command(k, -100.0), 0));
@@ -180,7 +180,7 @@ TEST(LinkGuard, AFrameUnderAnotherKeyIsRefusedBeforeTheHandshake) {
   Pair p(key(1));
   // The tick-0 sensor frame of a plant with another key: the controller must not bind to it.
   hil::MemoryTransport other_side{p.bus->to_controller, p.bus->to_plant};
-  hil::FrameEndpoint<hil::MemoryTransport> other_plant(other_side, hil::plant_guard(0x55555555, key(2)));
+  hil::FrameEndpoint<hil::MemoryTransport> other_plant(other_side, hil::plant_guard(0x55555555, key(2)), msg::kSignals);
   ASSERT_TRUE(other_plant.send(sensor(0), 0));
   msg::SensorFrame s{};
   EXPECT_EQ(p.controller.receive(Pair::now() + 20'000'000, s), hil::RxStatus::kTimeout);

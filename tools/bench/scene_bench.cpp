@@ -264,8 +264,8 @@ void BM_ShipController(benchmark::State& state) {
     return;
   }
   auto controller = std::make_unique<Controller>(c);
-  msg::SensorFrame f{};
-  msg::ActuatorFrame out{};
+  msg::AnySensorFrame f{};
+  msg::AnyActuatorFrame out{};
   std::uint64_t k = 0;
   for (auto _ : state) {
     f.tick = k;

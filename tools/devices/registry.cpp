@@ -1,5 +1,7 @@
 #include "tools/devices/registry.hpp"
 
+#include "tools/signals/device_signals.hpp"
+
 namespace gyrostab::tools {
 
 // The devices, one line each: the descriptor defined in tools/devices/<device>/<device>_device.cpp.
@@ -43,6 +45,10 @@ const DeviceDescriptor* find_device(std::string_view name) {
 can::NodeSet can_nodes_of(std::string_view device) {
   const DeviceDescriptor* d = find_device(device);
   return d != nullptr ? d->can_nodes : can::kAllNodes;
+}
+
+const msg::DeviceSignals& signals_of(const DeviceScene& scene) {
+  return find_device_signals(scene.loop().device);
 }
 
 }  // namespace gyrostab::tools

@@ -5,6 +5,7 @@
 #include <span>
 #include <string_view>
 
+#include "firmware/msg/signal_spec.hpp"
 #include "tools/devices/device.hpp"
 
 namespace gyrostab::tools {
@@ -16,5 +17,8 @@ const DeviceDescriptor* find_device(std::string_view name);
 
 // The device's CAN nodes; every node for a name no device has.
 can::NodeSet can_nodes_of(std::string_view device);
+
+// The signals of the scene's device: its frames' layout on every transport.
+const msg::DeviceSignals& signals_of(const DeviceScene& scene);
 
 }  // namespace gyrostab::tools

@@ -1,5 +1,7 @@
 #include "tools/log/bus_log_reader.hpp"
 
+#include "tools/signals/device_signals.hpp"
+
 #include <cerrno>
 #include <cstring>
 #include <memory>
@@ -192,6 +194,7 @@ ReadStatus BusLogReader::open(const std::string& path) {
     return fail(ReadStatus::kCorrupt, e.offset, "the scene event does not decode: " + why);
   }
   suffix_ = ch.substr(base.size());
+  signals_ = &find_device_signals(scene_.device);
   sensor_channel_ = channel(kSensorChannel, suffix_);
   actuator_channel_ = channel(kActuatorChannel, suffix_);
   end_channel_ = channel(kEndChannel, suffix_);
@@ -272,11 +275,12 @@ ReadStatus BusLogReader::next(TickRecord& out) {
   r.sensor_offset = s.offset;
   std::int64_t t_us = 0;
   hil::LinkEnvelope env;
-  hil::DecodeError de = hil::decode(s.ev->data, s.ev->datalen, r.sensor, &t_us, &env);
+  hil::DecodeError de = hil::decode(s.ev->data, s.ev->datalen, *signals_, r.sensor, &t_us, &env);
   if (de != hil::DecodeError::kOk) {
     return fail(ReadStatus::kCorrupt, s.offset,
-                "the sensor frame of " + tick_name() + " does not decode: " + hil::describe(de) +
-                    other_contract(de, s.ev->datalen, hil::kSensorEncodedSize));
+                "the sensor frame of " + tick_name() + " does not decode as " +
+                    std::string(signals_->lcm_sensor_type) + ": " + hil::describe(de) +
+                    other_contract(de, s.ev->datalen, hil::sensor_encoded_size(*signals_)));
   }
   if (!recorded_envelope(env)) {
     return fail(ReadStatus::kCorrupt, s.offset,
@@ -296,11 +300,12 @@ ReadStatus BusLogReader::next(TickRecord& out) {
   }
   if (st != ReadStatus::kOk) return st;
   r.actuator_offset = a.offset;
-  de = hil::decode(a.ev->data, a.ev->datalen, r.actuator, &t_us, &env);
+  de = hil::decode(a.ev->data, a.ev->datalen, *signals_, r.actuator, &t_us, &env);
   if (de != hil::DecodeError::kOk) {
     return fail(ReadStatus::kCorrupt, a.offset,
-                "the actuator frame of " + tick_name() + " does not decode: " + hil::describe(de) +
-                    other_contract(de, a.ev->datalen, hil::kActuatorEncodedSize));
+                "the actuator frame of " + tick_name() + " does not decode as " +
+                    std::string(signals_->lcm_actuator_type) + ": " + hil::describe(de) +
+                    other_contract(de, a.ev->datalen, hil::actuator_encoded_size(*signals_)));
   }
   if (!recorded_envelope(env)) {
     return fail(ReadStatus::kCorrupt, a.offset,

@@ -20,8 +20,8 @@
 #include <cstdio>
 #include <string>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
+#include "firmware/msg/signal_spec.hpp"
 #include "tools/log/bus_log_format.hpp"
 
 struct _lcm_eventlog_t;
@@ -40,8 +40,8 @@ const char* describe(ReadStatus s);
 
 struct TickRecord {
   std::int64_t tick{0};
-  msg::SensorFrame sensor{};
-  msg::ActuatorFrame actuator{};
+  msg::AnySensorFrame sensor{};
+  msg::AnyActuatorFrame actuator{};
   std::int64_t sensor_offset{0};    // byte offset of the sensor event in the file
   std::int64_t actuator_offset{0};  // byte offset of the actuator event
 };
@@ -55,8 +55,10 @@ class BusLogReader {
 
   // Opens `path` and reads the scene event (the first event).
   ReadStatus open(const std::string& path);
-  // Reads the next tick's sensor and actuator events into `out` (unchanged unless kOk).
+  // Reads the next tick's sensor and actuator events into `out` (unchanged unless kOk), decoded as the
+  // scene's device's frames (its signal table: tools/signals/device_signals.hpp).
   ReadStatus next(TickRecord& out);
+  const msg::DeviceSignals& signals() const { return *signals_; }
 
   const SceneEvent& scene() const { return scene_; }
   const std::string& channel_suffix() const { return suffix_; }
@@ -75,6 +77,7 @@ class BusLogReader {
   std::string tick_name() const;
 
   _lcm_eventlog_t* log_{nullptr};
+  const msg::DeviceSignals* signals_{nullptr};
   std::string path_;
   std::int64_t file_size_{0};
   std::int64_t next_eventnum_{0};

@@ -1,5 +1,7 @@
 #include "tools/log/bus_log_writer.hpp"
 
+#include "tools/signals/device_signals.hpp"
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -49,6 +51,7 @@ bool BusLogWriter::open(const std::string& path, const SceneEvent& scene, const 
     error = "channel suffix too long (LCM logs hold channel names up to 999 bytes)";
     return false;
   }
+  signals_ = &find_device_signals(scene.device);
   errno = 0;
   log_ = lcm_eventlog_create(path.c_str(), "w");
   if (log_ == nullptr) {
@@ -91,15 +94,15 @@ bool BusLogWriter::write(const std::string& ch, std::int64_t timestamp_us, const
   return true;
 }
 
-bool BusLogWriter::write_sensor(std::int64_t tick, const msg::SensorFrame& f) {
+bool BusLogWriter::write_sensor(std::int64_t tick, const msg::AnySensorFrame& f) {
   const std::int64_t t = sim_time_us(tick, tick_ns_);
-  const int n = hil::encode(f, t, sensor_buf_.data(), static_cast<int>(sensor_buf_.size()));
+  const int n = hil::encode(f, *signals_, t, sensor_buf_.data(), static_cast<int>(sensor_buf_.size()));
   return n > 0 && write(sensor_channel_, t, sensor_buf_.data(), n);
 }
 
-bool BusLogWriter::write_actuator(std::int64_t tick, const msg::ActuatorFrame& f) {
+bool BusLogWriter::write_actuator(std::int64_t tick, const msg::AnyActuatorFrame& f) {
   const std::int64_t t = sim_time_us(tick, tick_ns_);
-  const int n = hil::encode(f, t, actuator_buf_.data(), static_cast<int>(actuator_buf_.size()));
+  const int n = hil::encode(f, *signals_, t, actuator_buf_.data(), static_cast<int>(actuator_buf_.size()));
   return n > 0 && write(actuator_channel_, t, actuator_buf_.data(), n);
 }
 

@@ -17,8 +17,8 @@
 #include <memory>
 #include <string>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
+#include "firmware/msg/signal_spec.hpp"
 #include "hil/lcm/frame_codec.hpp"
 #include "tools/log/bus_log_format.hpp"
 
@@ -34,12 +34,13 @@ class BusLogWriter {
   BusLogWriter& operator=(const BusLogWriter&) = delete;
 
   // Creates (truncates) `path` and writes the scene event. false with `error` set.
+  // The frames are encoded as the scene's device's LCM types (its signal table).
   bool open(const std::string& path, const SceneEvent& scene, const std::string& channel_suffix,
             std::string& error);
 
-  bool write_sensor(std::int64_t tick, const msg::SensorFrame& f);
-  bool write_actuator(std::int64_t tick, const msg::ActuatorFrame& f);
-  bool write_tick(std::int64_t tick, const msg::SensorFrame& s, const msg::ActuatorFrame& a) {
+  bool write_sensor(std::int64_t tick, const msg::AnySensorFrame& f);
+  bool write_actuator(std::int64_t tick, const msg::AnyActuatorFrame& f);
+  bool write_tick(std::int64_t tick, const msg::AnySensorFrame& s, const msg::AnyActuatorFrame& a) {
     return write_sensor(tick, s) && write_actuator(tick, a);
   }
 
@@ -61,8 +62,9 @@ class BusLogWriter {
   std::int64_t tick_ns_{0};
   std::int64_t events_{0};
   bool failed_{false};
-  std::array<std::uint8_t, hil::kSensorEncodedSize> sensor_buf_{};
-  std::array<std::uint8_t, hil::kActuatorEncodedSize> actuator_buf_{};
+  const msg::DeviceSignals* signals_{nullptr};
+  std::array<std::uint8_t, hil::kMaxEncodedSize> sensor_buf_{};
+  std::array<std::uint8_t, hil::kMaxEncodedSize> actuator_buf_{};
   std::unique_ptr<char[]> stream_buf_;
 };
 

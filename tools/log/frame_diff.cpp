@@ -3,6 +3,8 @@
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
+#include <span>
+#include <string>
 
 namespace gyrostab::tools::buslog {
 
@@ -29,13 +31,6 @@ class Diff {
     if (!text_.empty()) text_ += "; ";
     text_ += line;
   }
-  template <class T, std::size_t N>
-  void array(const char* name, const T (&a)[N], const T (&b)[N]) {
-    for (std::size_t i = 0; i < N; ++i) {
-      const std::string n = std::string(name) + "[" + std::to_string(i) + "]";
-      field(n.c_str(), a[i], b[i]);
-    }
-  }
   const std::string& text() const { return text_; }
 
  private:
@@ -45,7 +40,18 @@ class Diff {
 
 }  // namespace
 
-std::string frame_differences(const msg::ActuatorFrame& r, const msg::ActuatorFrame& p) {
+// The signals by their names in the device's table: "name" for a scalar, "name[i]" for an array's element.
+void signals(Diff& d, std::span<const msg::SignalSpec> specs, const double* r, const double* p) {
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const msg::SignalSpec& s = specs[i];
+    std::string n(s.name);
+    if (s.count > 1) n += "[" + std::to_string(s.element) + "]";
+    d.field(n.c_str(), r[i], p[i]);
+  }
+}
+
+std::string frame_differences(const msg::AnyActuatorFrame& r, const msg::AnyActuatorFrame& p,
+                              const msg::DeviceSignals& device) {
   if (std::memcmp(&r, &p, sizeof r) == 0) return {};
   Diff d("replayed");
   d.field("tick", r.tick, p.tick);
@@ -53,14 +59,12 @@ std::string frame_differences(const msg::ActuatorFrame& r, const msg::ActuatorFr
   d.field("sensor_tick", r.sensor_tick, p.sensor_tick);
   d.field("sequence", r.sequence, p.sequence);
   d.field("status", r.status, p.status);
-  d.array("gimbal_torque_Nm", r.gimbal_torque_Nm, p.gimbal_torque_Nm);
-  d.array("motor_voltage_V", r.motor_voltage_V, p.motor_voltage_V);
-  d.field("precession_brake", r.precession_brake, p.precession_brake);
-  d.array("cluster_rate_command_rad_s", r.cluster_rate_command_rad_s, p.cluster_rate_command_rad_s);
+  signals(d, device.commands, r.signal, p.signal);
   return d.text().empty() ? std::string("bytes differ outside the named fields") : d.text();
 }
 
-std::string frame_differences(const msg::SensorFrame& r, const msg::SensorFrame& p) {
+std::string frame_differences(const msg::AnySensorFrame& r, const msg::AnySensorFrame& p,
+                              const msg::DeviceSignals& device) {
   if (std::memcmp(&r, &p, sizeof r) == 0) return {};
   Diff d("re-simulated");
   d.field("tick", r.tick, p.tick);
@@ -68,15 +72,7 @@ std::string frame_differences(const msg::SensorFrame& r, const msg::SensorFrame&
   d.field("sample_time_ns", r.sample_time_ns, p.sample_time_ns);
   d.field("sequence", r.sequence, p.sequence);
   d.field("status", r.status, p.status);
-  d.array("carrier_angle_rad", r.carrier_angle_rad, p.carrier_angle_rad);
-  d.array("carrier_rate_rad_s", r.carrier_rate_rad_s, p.carrier_rate_rad_s);
-  d.array("gimbal_angle_rad", r.gimbal_angle_rad, p.gimbal_angle_rad);
-  d.array("gimbal_rate_rad_s", r.gimbal_rate_rad_s, p.gimbal_rate_rad_s);
-  d.array("motor_current_A", r.motor_current_A, p.motor_current_A);
-  d.field("rotor_speed_rad_s", r.rotor_speed_rad_s, p.rotor_speed_rad_s);
-  d.array("encoder_count", r.encoder_count, p.encoder_count);
-  d.array("cluster_gimbal_angle_rad", r.cluster_gimbal_angle_rad, p.cluster_gimbal_angle_rad);
-  d.array("cluster_gimbal_rate_rad_s", r.cluster_gimbal_rate_rad_s, p.cluster_gimbal_rate_rad_s);
+  signals(d, device.sensors, r.signal, p.signal);
   return d.text().empty() ? std::string("bytes differ outside the named fields") : d.text();
 }
 

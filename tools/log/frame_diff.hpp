@@ -5,13 +5,16 @@
 
 #include <string>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
+#include "firmware/msg/signal_spec.hpp"
 
 namespace gyrostab::tools::buslog {
 
-// Empty when the frames are byte-identical (memcmp of the whole frame; neither has padding).
-std::string frame_differences(const msg::ActuatorFrame& recorded, const msg::ActuatorFrame& replayed);
-std::string frame_differences(const msg::SensorFrame& recorded, const msg::SensorFrame& resimulated);
+// Empty when the frames are byte-identical (memcmp of the whole frame; neither has padding); else the differing
+// header fields and signals, named as the device's signal table names them.
+std::string frame_differences(const msg::AnyActuatorFrame& recorded, const msg::AnyActuatorFrame& replayed,
+                              const msg::DeviceSignals& device);
+std::string frame_differences(const msg::AnySensorFrame& recorded, const msg::AnySensorFrame& resimulated,
+                              const msg::DeviceSignals& device);
 
 }  // namespace gyrostab::tools::buslog

@@ -32,7 +32,7 @@ class BusLog final : public TickSink {
   // Creates the log with the scene event; false with `error` set.
   bool open(const LoopConfig& loop, const RunRequest& req, std::string& error);
   bool stop_requested() override { return stop_signal_received() != 0; }
-  bool record(std::int64_t tick, const msg::SensorFrame& s, const msg::ActuatorFrame& a) override {
+  bool record(std::int64_t tick, const msg::AnySensorFrame& s, const msg::AnyActuatorFrame& a) override {
     return writer_.write_tick(tick, s, a);
   }
   // Writes the end event and closes; fills `run` (summary, error).

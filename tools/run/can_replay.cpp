@@ -5,7 +5,8 @@
 
 namespace gyrostab::tools {
 
-int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop, const RunRequest& req) {
+int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop, const msg::DeviceSignals& signals,
+                              const RunRequest& req) {
   const std::string& path = req.transport.replay_log;
   can::CandumpFile file;
   std::string error;
@@ -42,13 +43,13 @@ int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop
   can::FrameEncoder encoder(can::Direction::kActuator, nodes);
   std::deque<can::CanFrame> due;  // the controller's frames not yet matched against the log
   std::array<can::CanFrame, can::kMaxMessagesPerDirection> tx{};
-  msg::SensorFrame sensor{};
-  msg::ActuatorFrame out{}, recorded{};
+  msg::AnySensorFrame sensor{};
+  msg::AnyActuatorFrame out{}, recorded{};
   std::int64_t last_tick = -1;
   std::int64_t ticks = 0, compared = 0, skipped = 0;
   timespec pace{};
   clock_gettime(CLOCK_MONOTONIC, &pace);
-  const auto push_encoded = [&](const msg::ActuatorFrame& a) {
+  const auto push_encoded = [&](const msg::AnyActuatorFrame& a) {
     const std::size_t n = encoder.encode(a, tx);
     for (std::size_t i = 0; i < n; ++i) due.push_back(tx[i]);
     return n > 0;
@@ -128,7 +129,7 @@ int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop
                       std::memcmp(want.data, f.data, f.len) == 0;
     if (!same) {
       std::string fields;
-      if (commands.ready() && commands.take(recorded)) fields = "; fields: " + buslog::frame_differences(recorded, out);
+      if (commands.ready() && commands.take(recorded)) fields = "; fields: " + buslog::frame_differences(recorded, out, signals);
       std::fprintf(stderr, "gyrostab: %s:%d: MISMATCH at tick %lld (%lld frames before it identical): recorded %s, "
                    "controller %s%s\n", path.c_str(), r.line, static_cast<long long>(last_tick),
                    static_cast<long long>(compared), describe_can_frame(f).c_str(), describe_can_frame(want).c_str(),

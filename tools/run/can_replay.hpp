@@ -79,6 +79,7 @@ inline std::string describe_can_frame(const can::CanFrame& f) {
 }
 
 // Exit codes as for LCM logs (replay_session.hpp).
-int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop, const RunRequest& req);
+int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop, const msg::DeviceSignals& signals,
+                              const RunRequest& req);
 
 }  // namespace gyrostab::tools

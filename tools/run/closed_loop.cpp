@@ -20,7 +20,7 @@ double thread_cpu_s() {
 PlantTick::PlantTick(PlantPort& plant, const LoopConfig& cfg, Recorder* recorder, RowSink* rows)
     : plant_(plant), cfg_(cfg), recorder_(recorder), rows_(rows), applied_(plant.initial_command()) {}
 
-bool PlantTick::step(std::int64_t k, const msg::ActuatorFrame& command, LoopOutcome& out) {
+bool PlantTick::step(std::int64_t k, const msg::AnyActuatorFrame& command, LoopOutcome& out) {
   const int latency = cfg_.latency_ticks;
   if (latency == 0) {
     applied_ = command;
@@ -48,8 +48,8 @@ LoopOutcome run_closed_loop(PlantPort& plant, ControllerPort& controller, const 
   LoopOutcome out;
   const std::int64_t ticks = cfg.ticks();
   PlantTick tick(plant, cfg, recorder, rows);
-  msg::SensorFrame sensor{};
-  msg::ActuatorFrame command{};
+  msg::AnySensorFrame sensor{};
+  msg::AnyActuatorFrame command{};
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = thread_cpu_s();
   const bool show = progress && isatty(STDERR_FILENO);

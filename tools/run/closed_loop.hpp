@@ -32,7 +32,7 @@ class TickSink {
  public:
   virtual ~TickSink() = default;
   virtual bool stop_requested() = 0;  // polled before each tick
-  virtual bool record(std::int64_t tick, const msg::SensorFrame& sensor, const msg::ActuatorFrame& command) = 0;
+  virtual bool record(std::int64_t tick, const msg::AnySensorFrame& sensor, const msg::AnyActuatorFrame& command) = 0;
 };
 
 // Sees each recorded row right after the recorder took it (a live view: tools/view/live_feed.hpp): the row's
@@ -51,15 +51,15 @@ class RowSink {
 class PlantTick {
  public:
   PlantTick(PlantPort& plant, const LoopConfig& cfg, Recorder* recorder, RowSink* rows = nullptr);
-  bool step(std::int64_t k, const msg::ActuatorFrame& command, LoopOutcome& out);
+  bool step(std::int64_t k, const msg::AnyActuatorFrame& command, LoopOutcome& out);
 
  private:
   PlantPort& plant_;
   const LoopConfig& cfg_;
   Recorder* recorder_;
   RowSink* rows_;
-  std::array<msg::ActuatorFrame, kMaxLatencyTicks + 1> pipe_{};
-  msg::ActuatorFrame applied_;
+  std::array<msg::AnyActuatorFrame, kMaxLatencyTicks + 1> pipe_{};
+  msg::AnyActuatorFrame applied_;
 };
 
 // Runs cfg.ticks() ticks (fewer when the plant diverges or the sink stops it). `progress`: a progress line on

@@ -22,16 +22,17 @@ enum class CommandWait { kAccepted, kMissing, kLost, kStopped, kError };
 // Waits for the actuator frame of tick k (see the header for the rules). `cmd` receives it on kAccepted.
 template <class Transport>
 CommandWait wait_for_command(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& order,
-                             const hil::ActuatorLimits& limits, std::int64_t k, std::int64_t deadline_ns,
+                             const hil::ActuatorLimits& limits, const msg::DeviceSignals& signals, std::int64_t k,
+                             std::int64_t deadline_ns,
                              bool lockstep, std::int64_t lost_at_ns, const LinkSettings& s,
-                             msg::ActuatorFrame& cmd) {
+                             msg::AnyActuatorFrame& cmd) {
   hil::LinkCounters& c = ep.counters();
   std::int64_t next_resend = lockstep ? hil::monotonic_ns() + s.resend_ns : hil::kNoDeadline;
   std::int64_t grace_until = hil::kNoDeadline;
   const auto tick = static_cast<std::uint64_t>(k);
   for (;;) {
     const std::int64_t until = std::min({deadline_ns, lost_at_ns, next_resend, grace_until});
-    msg::ActuatorFrame f{};
+    msg::AnyActuatorFrame f{};
     const hil::RxStatus r = ep.receive(until, f);
     if (r == hil::RxStatus::kError) return CommandWait::kError;
     if (stop_signal_received() != 0) return CommandWait::kStopped;
@@ -45,7 +46,7 @@ CommandWait wait_for_command(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder&
       }
       continue;
     }
-    const hil::ActuatorVerdict v = hil::check_actuator_values(f, limits);
+    const hil::ActuatorVerdict v = hil::check_actuator_values(f, signals, limits);
     if (v != hil::ActuatorVerdict::kOk) {
       if (v == hil::ActuatorVerdict::kNonFinite) ++c.rejected_non_finite;
       else ++c.rejected_out_of_range;

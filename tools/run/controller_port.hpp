@@ -11,8 +11,7 @@
 #include <utility>
 
 #include "firmware/fault/fault_monitor.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
 #include "tools/run/controller_report.hpp"
 
 namespace gyrostab::tools {
@@ -21,7 +20,7 @@ class ControllerPort {
  public:
   virtual ~ControllerPort() = default;
 
-  virtual void step(std::uint64_t tick, const msg::SensorFrame* frame, msg::ActuatorFrame& out) = 0;
+  virtual void step(std::uint64_t tick, const msg::AnySensorFrame* frame, msg::AnyActuatorFrame& out) = 0;
   // The safe command is out: latched safe state, or still awaiting the first good frame.
   virtual bool in_safe_state() const = 0;
   // The fault monitor's recovery request (firmware/fault/fault_monitor.hpp): the safe state is left on the
@@ -34,14 +33,27 @@ class ControllerPort {
   virtual nlohmann::json report() const = 0;
 };
 
+// Holds the controller in place and converts between the run modes' device-independent frames and the
+// controller's typed ones (one copy of each frame per tick).
 template <class Controller>
 class ControllerPortOf final : public ControllerPort {
  public:
+  using SensorFrame = typename Controller::SensorFrame;
+  using ActuatorFrame = typename Controller::ActuatorFrame;
+
   template <class... Args>
   explicit ControllerPortOf(Args&&... args) : c_(std::forward<Args>(args)...) {}
 
-  void step(std::uint64_t tick, const msg::SensorFrame* frame, msg::ActuatorFrame& out) override {
-    c_.step(tick, frame, out);
+  void step(std::uint64_t tick, const msg::AnySensorFrame* frame, msg::AnyActuatorFrame& out) override {
+    ActuatorFrame command{};
+    if (frame != nullptr) {
+      SensorFrame in{};
+      msg::from_any(*frame, in);
+      c_.step(tick, &in, command);
+    } else {
+      c_.step(tick, nullptr, command);
+    }
+    msg::to_any(command, out);
   }
   bool in_safe_state() const override {
     const firmware::MonitorState s = c_.monitor_state();

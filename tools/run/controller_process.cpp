@@ -34,6 +34,7 @@
 #include "hil/link/memory_bus.hpp"
 #include "hil/rt/deadline_pacer.hpp"
 #include "hil/rt/rt_setup.hpp"
+#include "tools/devices/registry.hpp"
 #include "tools/log/stop_signal.hpp"
 #include "tools/run/can_link_setup.hpp"
 #include "tools/run/controller_port.hpp"
@@ -85,14 +86,14 @@ struct PlantPhase {
 template <class Transport>
 SensorWait wait_for_sensor(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& order, std::int64_t k,
                            PlantPhase& phase, std::int64_t lost_at_ns, bool lockstep, const LinkSettings& s,
-                           std::int64_t last_sent_tick, std::int64_t& last_republish_ns, msg::SensorFrame& frame,
-                           msg::SensorFrame& early) {
+                           std::int64_t last_sent_tick, std::int64_t& last_republish_ns, msg::AnySensorFrame& frame,
+                           msg::AnySensorFrame& early) {
   hil::LinkCounters& c = ep.counters();
   const auto tick = static_cast<std::uint64_t>(k);
   for (;;) {
     const std::int64_t deadline_ns = lockstep ? hil::kNoDeadline : phase.deadline(k, s);
     const std::int64_t until = std::min(deadline_ns, lost_at_ns);
-    msg::SensorFrame f{};
+    msg::AnySensorFrame f{};
     const hil::RxStatus r = ep.receive(until, f);
     if (r == hil::RxStatus::kError) return SensorWait::kError;
     if (stop_signal_received() != 0) return SensorWait::kStopped;
@@ -151,9 +152,9 @@ void run_controller_loop(ControllerPort& ctl, const LoopConfig& cfg, const RunRe
   const std::int64_t ticks = cfg.ticks();
   hil::FrameOrder order;
   JitterInjector jitter(s, cfg.seed);
-  msg::SensorFrame frame{}, early{};
+  msg::AnySensorFrame frame{}, early{};
   bool have_early = false;
-  msg::ActuatorFrame out{}, published{};
+  msg::AnyActuatorFrame out{}, published{};
   std::int64_t last_sent_tick = -1;
   std::int64_t last_republish = 0;
   PlantPhase phase;  // real time: the plant's clock, from the arrivals of its frames
@@ -243,7 +244,8 @@ void run_controller_loop(ControllerPort& ctl, const LoopConfig& cfg, const RunRe
     } else {
       published = out;
       if (t.actuator_corrupt.covers(k)) {
-        published.gimbal_torque_Nm[msg::kAxis2] = std::numeric_limits<double>::quiet_NaN();
+        // The first command (every device that commands anything has one) becomes NaN: a plant must refuse it.
+        published.signal[0] = std::numeric_limits<double>::quiet_NaN();
         ++ep.counters().corrupted_by_fault;
       }
       ep.send(published, k * cfg.tick_ns / 1000);
@@ -282,7 +284,8 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
     std::fprintf(stderr, "gyrostab controller: %s\n", error.c_str());
     return 2;
   }
-  hil::FrameEndpoint<Transport> ep(transport, hil::controller_guard(guard.own_id, guard.session, guard.key));
+  hil::FrameEndpoint<Transport> ep(transport, hil::controller_guard(guard.own_id, guard.session, guard.key),
+                                   signals_of(scene));
   if (req.transport.loss > 0) ep.inject_loss(req.transport.loss, loop.seed, 2);
   auto stats = std::make_unique<LinkStats>();
   ControllerLinkOutcome link;

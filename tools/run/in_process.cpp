@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "tools/devices/registry.hpp"
 #include "tools/run/bus_log_sink.hpp"
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/run_modes.hpp"

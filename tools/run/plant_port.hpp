@@ -3,9 +3,12 @@
 // port; what lies behind it — the device's composed plant in sim/plants/ with its meters — stays templated,
 // so the per-step work is inlined inside step().
 //
-// A device implements the plant concept below and is wrapped by PlantPortOf<Binding>:
-//   void sense(std::int64_t tick, msg::SensorFrame& out);   // the sensor frame of tick k
-//   void actuate(const msg::ActuatorFrame& cmd);            // the command held over [k, k + 1)
+// A device implements the plant concept below and is wrapped by PlantPortOf<Binding>; the run modes see the
+// device-independent frames (firmware/msg/any_frame.hpp), the binding its own typed ones:
+//   using SensorFrame = ...; using ActuatorFrame = ...;     // the device's typed frames (default: the shared
+//                                                           // legacy frames, firmware/msg/sensor_frame.hpp)
+//   void sense(std::int64_t tick, SensorFrame& out);        // the sensor frame of tick k
+//   void actuate(const ActuatorFrame& cmd);                 // the command held over [k, k + 1)
 //   void advance(std::int64_t tick);                        // integrate [k, k + 1) and feed the meters
 //   bool finite() const;
 //   void record(double* row) const;                         // the scene's columns, in order
@@ -14,7 +17,7 @@
 //   (optional) nlohmann::json report_extra() const;         // blocks beside "figures" ("plant", "drift", ...)
 //   (optional) nlohmann::json error_estimate() const;       // report.json "error_estimate"
 //   (optional) nlohmann::json extra_timing(const LoopOutcome&) const;
-//   (optional) msg::ActuatorFrame initial_command() const;  // applied until the first command arrives
+//   (optional) ActuatorFrame initial_command() const;       // applied until the first command arrives
 // Docs: docs/architecture.md.
 #pragma once
 
@@ -24,6 +27,7 @@
 #include <utility>
 
 #include "firmware/msg/actuator_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
 #include "firmware/msg/sensor_frame.hpp"
 #include "tools/run/loop_outcome.hpp"
 #include "tools/run/state_guard.hpp"
@@ -34,12 +38,12 @@ class PlantPort {
  public:
   virtual ~PlantPort() = default;
 
-  virtual void sense(std::int64_t tick, msg::SensorFrame& out) = 0;
+  virtual void sense(std::int64_t tick, msg::AnySensorFrame& out) = 0;
   // Applies `command` and integrates tick k; false when the state became non-finite (`where` says which
   // component went first, for a plant that names its state).
-  virtual bool step(std::int64_t tick, const msg::ActuatorFrame& command, NonFiniteState& where) = 0;
+  virtual bool step(std::int64_t tick, const msg::AnyActuatorFrame& command, NonFiniteState& where) = 0;
   virtual void record(double* row) const = 0;
-  virtual msg::ActuatorFrame initial_command() const = 0;
+  virtual msg::AnyActuatorFrame initial_command() const = 0;
 
   virtual nlohmann::json figures() const = 0;
   virtual nlohmann::json report_extra() const = 0;
@@ -47,15 +51,37 @@ class PlantPort {
   virtual nlohmann::json extra_timing(const LoopOutcome& outcome) const = 0;
 };
 
+// The typed frames a binding exchanges: its own, or the shared legacy ones.
+template <class Binding>
+struct BindingFrames {
+  using Sensor = msg::SensorFrame;
+  using Actuator = msg::ActuatorFrame;
+};
+template <class Binding>
+  requires requires { typename Binding::SensorFrame; }
+struct BindingFrames<Binding> {
+  using Sensor = typename Binding::SensorFrame;
+  using Actuator = typename Binding::ActuatorFrame;
+};
+
 template <class Binding>
 class PlantPortOf final : public PlantPort {
  public:
+  using SensorFrame = typename BindingFrames<Binding>::Sensor;
+  using ActuatorFrame = typename BindingFrames<Binding>::Actuator;
+
   template <class... Args>
   explicit PlantPortOf(Args&&... args) : b_(std::forward<Args>(args)...) {}
 
-  void sense(std::int64_t tick, msg::SensorFrame& out) override { b_.sense(tick, out); }
-  bool step(std::int64_t tick, const msg::ActuatorFrame& command, NonFiniteState& where) override {
-    b_.actuate(command);
+  void sense(std::int64_t tick, msg::AnySensorFrame& out) override {
+    SensorFrame f{};
+    b_.sense(tick, f);
+    msg::to_any(f, out);
+  }
+  bool step(std::int64_t tick, const msg::AnyActuatorFrame& command, NonFiniteState& where) override {
+    ActuatorFrame c;
+    msg::from_any(command, c);
+    b_.actuate(c);
     guard_.remember(b_);
     b_.advance(tick);
     if (b_.finite()) return true;
@@ -63,12 +89,12 @@ class PlantPortOf final : public PlantPort {
     return false;
   }
   void record(double* row) const override { b_.record(row); }
-  msg::ActuatorFrame initial_command() const override {
+  msg::AnyActuatorFrame initial_command() const override {
+    msg::AnyActuatorFrame out{};
     if constexpr (requires(const Binding& b) { b.initial_command(); }) {
-      return b_.initial_command();
-    } else {
-      return msg::ActuatorFrame{};
+      msg::to_any(b_.initial_command(), out);
     }
+    return out;
   }
   nlohmann::json figures() const override {
     if constexpr (requires(const Binding& b) { b.figures(); }) {

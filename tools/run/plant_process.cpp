@@ -38,6 +38,7 @@
 #include "hil/rt/deadline_pacer.hpp"
 #include "hil/rt/rt_setup.hpp"
 #include "hil/target/target_endpoint.hpp"
+#include "tools/devices/registry.hpp"
 #include "tools/log/stop_signal.hpp"
 #include "tools/run/bus_log_sink.hpp"
 #include "tools/run/can_link_setup.hpp"
@@ -55,6 +56,21 @@
 namespace gyrostab::tools {
 namespace {
 
+// report.json link.actuator_limits: what the plant's drives accept, per command of the device's table — its
+// range and, where the scene sets one, the magnitude limit.
+nlohmann::json actuator_limits_json(const hil::ActuatorLimits& limits, const msg::DeviceSignals& signals) {
+  nlohmann::json j = nlohmann::json::object();
+  for (std::size_t i = 0; i < signals.commands.size(); ++i) {
+    const msg::SignalSpec& c = signals.commands[i];
+    std::string name(c.name);
+    if (c.count > 1) name += "[" + std::to_string(c.element) + "]";
+    nlohmann::json e{{"range", {c.min, c.max}}, {"unit", c.unit}};
+    if (limits.from_scene && std::isfinite(limits.magnitude[i])) e["magnitude_limit"] = limits.magnitude[i];
+    j[name] = e;
+  }
+  return j;
+}
+
 // What happened to the link during a plant run (report.json "peer" and "drive_watchdog").
 struct PlantLinkOutcome {
   bool peer_lost{false};
@@ -69,7 +85,8 @@ struct PlantLinkOutcome {
 };
 
 template <class Transport>
-LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& limits, const LoopConfig& cfg,
+LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& limits,
+                           const msg::DeviceSignals& signals, const LoopConfig& cfg,
                            const RunRequest& req, const LinkSettings& s, hil::FrameEndpoint<Transport>& ep,
                            LinkStats& stats, PlantLinkOutcome& link, Recorder* recorder, TickSink* sink,
                            RowSink* rows) {
@@ -80,9 +97,9 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
   hil::FrameOrder order;
   JitterInjector jitter(s, cfg.seed);
   PlantTick plant(plant_port, cfg, recorder, rows);
-  msg::SensorFrame sensor{};
-  msg::SensorFrame published{};
-  msg::ActuatorFrame command{};
+  msg::AnySensorFrame sensor{};
+  msg::AnySensorFrame published{};
+  msg::AnyActuatorFrame command{};
   std::int64_t epoch = 0;
   std::int64_t last_heard = hil::monotonic_ns();
   std::int64_t missing_in_a_row = 0;
@@ -111,7 +128,8 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
     published = sensor;
     const bool dropped = t.sensor_drop.covers(k);
     if (t.sensor_corrupt.covers(k)) {
-      published.carrier_angle_rad[msg::kRoll] = std::numeric_limits<double>::quiet_NaN();
+      // The first signal becomes NaN: the controller's fault monitor must catch it (every signal is screened).
+      published.signal[0] = std::numeric_limits<double>::quiet_NaN();
       ++ep.counters().corrupted_by_fault;
     }
     if (const std::int64_t d = jitter.next(); d > 0) hil::spin_for(d);
@@ -140,7 +158,7 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
                        : t_sent + static_cast<std::int64_t>(kMissingCommandFraction * static_cast<double>(s.timeout_ns));
       }
       const std::int64_t lost_at = (handshake ? t_sent : last_heard) + (handshake ? s.start_timeout_ns : s.timeout_ns);
-      w = wait_for_command(ep, order, limits, k, deadline, lockstep, lost_at, s, command);
+      w = wait_for_command(ep, order, limits, signals, k, deadline, lockstep, lost_at, s, command);
     }
     const std::int64_t t_got = hil::monotonic_ns();
     if (w == CommandWait::kStopped) {
@@ -209,7 +227,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   const hil::ActuatorLimits limits = scene.actuator_limits();
   Recorder rec(scene.columns(), req.ticks >= 0 ? req.ticks : loop.ticks(), loop.record_every, loop.signals);
   const LinkSettings s = link_settings(run_loop, req.transport);
-  hil::FrameEndpoint<Transport> ep(transport, hil::plant_guard(guard.session, guard.key));
+  hil::FrameEndpoint<Transport> ep(transport, hil::plant_guard(guard.session, guard.key), signals_of(scene));
   if (req.transport.loss > 0) ep.inject_loss(req.transport.loss, loop.seed, 1);
   auto stats = std::make_unique<LinkStats>();
   PlantLinkOutcome link;
@@ -241,7 +259,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   }
   {
     if (req.before_loop) req.before_loop();
-    outcome = run_plant_loop(*plant, limits, run_loop, req, s, ep, *stats, link, &rec, log.get(),
+    outcome = run_plant_loop(*plant, limits, signals_of(scene), run_loop, req, s, ep, *stats, link, &rec, log.get(),
                              live ? live->sink() : nullptr);
     if (logging && outcome.interrupted && link.stop_signal == 0) link.stop_signal = stop_signal_received();
     if (req.after_loop) req.after_loop();
@@ -268,12 +286,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   } else if constexpr (requires { ep.report_extra(); }) {
     l["can"] = ep.report_extra();  // CAN level
   }
-  l["actuator_limits"] = limits.from_scene
-                             ? nlohmann::json{{"torque_Nm", {limits.torque_Nm[0], limits.torque_Nm[1]}},
-                                              {"voltage_V", {limits.voltage_V[0], limits.voltage_V[1]}},
-                                              {"cluster_rate_rad_s", limits.cluster_rate_rad_s},
-                                              {"brake", {0.0, 1.0}}}
-                             : nlohmann::json("finite values and brake in [0, 1] only (the device states no limits)");
+  l["actuator_limits"] = actuator_limits_json(limits, signals_of(scene));
   l["drive_watchdog"] = {{"zero_torque_ticks", link.watchdog_ticks}, {"first_tick", link.first_watchdog_tick}};
   std::string happened = "completed";
   if (link.peer_lost) {

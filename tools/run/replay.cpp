@@ -13,6 +13,7 @@
 #include <cstring>
 #include <memory>
 
+#include "tools/devices/registry.hpp"
 #include "tools/log/frame_diff.hpp"
 #include "tools/run/can_replay.hpp"
 #include "tools/run/replay_session.hpp"
@@ -40,12 +41,12 @@ int replay_controller(const DeviceScene& scene, const RunRequest& req) {
     ctl = scene.make_controller();
   }
   ControllerPort& controller = *ctl;
-  if (can::looks_like_candump_log(req.transport.replay_log)) return replay_controller_candump(controller, loop, req);
+  if (can::looks_like_candump_log(req.transport.replay_log)) return replay_controller_candump(controller, loop, signals_of(scene), req);
   ReplaySession session;
   int exit_code = 0;
   if (!session.open(loop, req, exit_code)) return exit_code;
   buslog::TickRecord t;
-  msg::ActuatorFrame out{};
+  msg::AnyActuatorFrame out{};
   std::int64_t ticks = 0;
   buslog::ReadStatus s;
   while ((s = session.next(t)) == buslog::ReadStatus::kOk) {
@@ -63,7 +64,7 @@ int replay_controller(const DeviceScene& scene, const RunRequest& req) {
                    "identical): %s\n",
                    session.log_path().c_str(), static_cast<long long>(t.tick),
                    static_cast<long long>(t.actuator_offset), static_cast<long long>(ticks),
-                   buslog::frame_differences(t.actuator, out).c_str());
+                   buslog::frame_differences(t.actuator, out, signals_of(scene)).c_str());
       return kReplayExitMismatch;
     }
     ++ticks;

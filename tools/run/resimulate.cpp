@@ -12,6 +12,7 @@
 #include <cstring>
 
 #include "hil/can/candump_log.hpp"
+#include "tools/devices/registry.hpp"
 #include "tools/log/frame_diff.hpp"
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/replay_session.hpp"
@@ -33,7 +34,7 @@ int resimulate_plant(const DeviceScene& scene, const RunRequest& req) {
   std::unique_ptr<PlantPort> device = scene.make_plant(PlantOptions{false, req.ticks});
   Recorder rec(scene.columns(), loop.ticks(), loop.record_every);
   PlantTick plant(*device, loop, &rec);
-  msg::SensorFrame sensed{};
+  msg::AnySensorFrame sensed{};
   buslog::TickRecord t;
   LoopOutcome outcome;
   buslog::ReadStatus s;
@@ -46,7 +47,7 @@ int resimulate_plant(const DeviceScene& scene, const RunRequest& req) {
                    "gyrostab: %s: MISMATCH at tick %lld (sensor event at byte %lld; the %lld ticks before it are "
                    "identical): %s\n",
                    session.log_path().c_str(), static_cast<long long>(k), static_cast<long long>(t.sensor_offset),
-                   static_cast<long long>(outcome.ticks_run), buslog::frame_differences(t.sensor, sensed).c_str());
+                   static_cast<long long>(outcome.ticks_run), buslog::frame_differences(t.sensor, sensed, signals_of(scene)).c_str());
       rc = kReplayExitMismatch;
       break;
     }

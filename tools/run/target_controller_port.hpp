@@ -25,11 +25,11 @@ class TargetControllerPort final : public ControllerPort {
   TargetControllerPort(hil::TargetBus& bus, std::int64_t timeout_ns, std::int64_t resend_ns)
       : bus_(bus), timeout_ns_(timeout_ns), resend_ns_(resend_ns) {}
 
-  void step(std::uint64_t tick, const msg::SensorFrame* frame, msg::ActuatorFrame& out) override {
+  void step(std::uint64_t tick, const msg::AnySensorFrame* frame, msg::AnyActuatorFrame& out) override {
     out = hil::drive_watchdog_command(tick);
     if (lost_ || frame == nullptr) return;  // a replayed log always has the frame
     const std::int64_t lost_at = hil::monotonic_ns() + timeout_ns_;
-    bool sent = bus_.write(bus_.encoder.encode(firmware::link::TargetFrameKind::kSensor, *frame));
+    bool sent = bus_.write(bus_.encode_sensor(*frame));
     for (;;) {
       const std::int64_t now = hil::monotonic_ns();
       if (now >= lost_at || !sent) {
@@ -45,12 +45,11 @@ class TargetControllerPort final : public ControllerPort {
         return;
       }
       if (s == hil::RxStatus::kTimeout) {  // resend: the image answers a repeat with the same command
-        sent = bus_.write(bus_.encoder.encode(firmware::link::TargetFrameKind::kSensor, *frame));
+        sent = bus_.write(bus_.encode_sensor(*frame));
         continue;
       }
       if (f.kind != firmware::link::TargetFrameKind::kActuator) continue;
-      msg::ActuatorFrame a{};
-      std::memcpy(&a, f.payload.data(), sizeof a);
+      const msg::AnyActuatorFrame a = hil::TargetBus::actuator_of(f);
       if (a.tick != tick) continue;  // an answer to an earlier tick
       out = a;
       last_status_ = a.status;

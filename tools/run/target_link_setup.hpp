@@ -18,6 +18,7 @@
 #include "hil/target/target_endpoint.hpp"
 #include "tools/build_paths.hpp"
 #include "tools/devices/device.hpp"
+#include "tools/devices/registry.hpp"
 #include "tools/run/controller_report.hpp"
 #include "tools/run/link_identity.hpp"
 #include "tools/run/link_settings.hpp"
@@ -71,6 +72,7 @@ inline int open_target_link(const DeviceScene& scene, RunRequest& req, hil::Targ
   bus.launch.qemu = t.qemu;
   bus.launch.image = image;
   bus.launch.device = loop.device;
+  bus.set_device(signals_of(scene));
   bus.launch.uart = t.target_link == "uart";
   if (t.target_core == "m4f") {
     bus.launch.machine = "mps2-an386";

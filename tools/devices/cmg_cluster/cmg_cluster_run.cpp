@@ -311,12 +311,10 @@ struct CmgClusterTraits {
   static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   // The gimbal rate commands' limit is the steering's rate limit; the two gimbal drives' slots carry nothing.
   static hil::ActuatorLimits actuator_limits(const Scene& s) {
-    hil::ActuatorLimits l;
-    l.torque_Nm[0] = l.torque_Nm[1] = 0.0;
-    l.voltage_V[0] = l.voltage_V[1] = 0.0;
-    l.cluster_rate_rad_s = s.controller.steering.max_rate * (1.0 + 1e-9);
-    l.from_scene = true;
-    return l;
+    msg::ActuatorFrame l{};  // zero: no torque or voltage drive
+    for (double& r : l.cluster_rate_command_rad_s) r = s.controller.steering.max_rate * (1.0 + 1e-9);
+    l.precession_brake = 1.0;
+    return hil::ActuatorLimits::of(l);
   }
   static nlohmann::json limits(const Scene& s) {
     return {{"max_gimbal_rate_rad_s", s.controller.steering.max_rate},

@@ -233,12 +233,11 @@ struct ConingTraits {
   static const motion::SceneBaseMotion* base_motion(const Scene& s) { return &s.plant.base; }
   // The drive's supply on axis 1 (the only command); no torques.
   static hil::ActuatorLimits actuator_limits(const Scene& s) {
-    hil::ActuatorLimits l;
-    l.torque_Nm[0] = l.torque_Nm[1] = 0.0;
-    l.voltage_V[0] = s.plant.voltage_limit;
-    l.voltage_V[1] = 0.0;
-    l.from_scene = true;
-    return l;
+    msg::ActuatorFrame l = hil::ActuatorLimits::unlimited<msg::ActuatorFrame>();
+    l.gimbal_torque_Nm[0] = l.gimbal_torque_Nm[1] = 0.0;
+    l.motor_voltage_V[0] = s.plant.voltage_limit;
+    l.motor_voltage_V[1] = 0.0;
+    return hil::ActuatorLimits::of(l);
   }
   static nlohmann::json limits(const Scene& s) { return {{"drive_voltage_limit_V", s.plant.voltage_limit}}; }
 };
