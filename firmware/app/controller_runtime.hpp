@@ -39,10 +39,14 @@
 // command is the safe values (brake on), so a recovering controller never releases the brake on stale data.
 //
 // A device ("law adapter") D provides
-//   void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd)   // writes torques, voltages, brake
-//                                                                         // and its law status bits
-//   void reset()                                                          // frame withheld: clear state
-// and the controller passes the mask of gimbal axes whose torque the drive task converts to a voltage.
+//   using SensorFrame = ...; using ActuatorFrame = ...;   // its typed frames (gyrostab_signals/<device>_frames.hpp;
+//                                                         // default: the shared legacy frames)
+//   void control(const SensorFrame& in, ActuatorFrame& cmd)   // writes its commands and its law status bits
+//   void reset()                                              // frame withheld: clear state
+//   (with a drive) static constexpr DriveSignals kDriveSignals[kDriveChannels]   // which values each current
+//                                                                               // loop reads and writes
+// and the controller passes the mask of drive channels whose torque the drive task converts to a voltage.
+// The safe values, the finite check and the fault monitor's ranges come from the device's signal table.
 // Resources: the device, the monitor (one SensorFrame), a 2-task scheduler, two current loops; no heap, no
 // exceptions, no I/O. step() is O(1). Not copyable or movable (the scheduler holds `this`).
 // Tests: tests/unit/controllers_test.cpp.
@@ -65,23 +69,59 @@
 
 namespace gyrostab::firmware {
 
-struct RuntimeConfig {
+template <class SensorFrame>
+struct RuntimeConfigOf {
   std::int64_t tick_period_ns{1'000'000};  // T_b, base tick [ns]
   std::uint32_t control_divisor{1};        // control law every this many base ticks [-]
   std::uint32_t drive_divisor{1};          // drive loops every this many base ticks; divides control_divisor
   std::int64_t control_budget_ns{0};  // compute budget of one control run (overrun count); ≤ 0: none [ns]
   std::int64_t drive_budget_ns{0};    // same for one drive run [ns]
-  FaultMonitorConfig monitor{};       // ranges, hold_ticks, max_age_ticks, sensor status faults
+  FaultMonitorConfigOf<SensorFrame> monitor{};  // ranges, hold_ticks, max_age_ticks, sensor status faults
 
   constexpr double tick_period_s() const { return static_cast<double>(tick_period_ns) * 1e-9; }
   constexpr double control_period_s() const { return tick_period_s() * static_cast<double>(control_divisor); }
   constexpr double drive_period_s() const { return tick_period_s() * static_cast<double>(drive_divisor); }
 };
 
-// Current loops for voltage-driven gimbal motors; disabled: torque-mode drives, motor_voltage_V stays 0.
+// The shared legacy frame's runtime configuration, for the devices not yet on a table of their own.
+using RuntimeConfig = RuntimeConfigOf<msg::SensorFrame>;
+
+// A device's gimbal drives: up to two channels (the book's axes 1 and 2 of a single-rotor device).
+inline constexpr std::size_t kDriveChannels = 2;
+
+// Current loops for voltage-driven gimbal motors; disabled: torque-mode drives, the voltages stay 0.
 struct DriveConfig {
   bool enabled{false};
-  TorqueCurrentLoopParams axis[msg::kGimbalAxes]{};  // per gimbal axis (only the device's axes are used)
+  TorqueCurrentLoopParams axis[kDriveChannels]{};  // per drive channel (only the device's channels are used)
+};
+
+// The values one drive channel's current loop works on (value indices in the device's typed frames):
+// the law's torque command in, the voltage command out, the winding current and the gimbal rate measured.
+struct DriveSignals {
+  std::size_t torque;   // command value [N m]
+  std::size_t voltage;  // command value [V]
+  std::size_t current;  // sensor value [A]
+  std::size_t rate;     // sensor value [rad/s]
+};
+// The shared legacy frame's channels: gimbal_torque_Nm[a], motor_voltage_V[a], motor_current_A[a],
+// gimbal_rate_rad_s[a].
+inline constexpr DriveSignals kLegacyDriveSignals[kDriveChannels] = {
+    {msg::CommandIndex::gimbal_torque_Nm, msg::CommandIndex::motor_voltage_V, msg::SensorIndex::motor_current_A,
+     msg::SensorIndex::gimbal_rate_rad_s},
+    {msg::CommandIndex::gimbal_torque_Nm + 1, msg::CommandIndex::motor_voltage_V + 1,
+     msg::SensorIndex::motor_current_A + 1, msg::SensorIndex::gimbal_rate_rad_s + 1}};
+
+// The typed frames of a law adapter: its own, or the shared legacy ones.
+template <class Device>
+struct DeviceFrames {
+  using Sensor = msg::SensorFrame;
+  using Actuator = msg::ActuatorFrame;
+};
+template <class Device>
+  requires requires { typename Device::SensorFrame; }
+struct DeviceFrames<Device> {
+  using Sensor = typename Device::SensorFrame;
+  using Actuator = typename Device::ActuatorFrame;
 };
 
 inline constexpr std::uint32_t axis_mask(std::size_t axis) {
@@ -90,7 +130,8 @@ inline constexpr std::uint32_t axis_mask(std::size_t axis) {
 
 // The runtime's part of every Config::check(): tick period and divisors, then the current loops of the axes
 // in `drive_axes` if the drive is enabled. O(1).
-inline ConfigCheck check_runtime(const RuntimeConfig& rc, const DriveConfig& dc, std::uint32_t drive_axes) {
+template <class SensorFrame>
+ConfigCheck check_runtime(const RuntimeConfigOf<SensorFrame>& rc, const DriveConfig& dc, std::uint32_t drive_axes) {
   if (!(rc.tick_period_ns > 0)) {
     return ConfigCheck::refused("runtime: tick_period_ns must be > 0",
                                 static_cast<double>(rc.tick_period_ns));
@@ -104,7 +145,7 @@ inline ConfigCheck check_runtime(const RuntimeConfig& rc, const DriveConfig& dc,
         static_cast<double>(rc.drive_divisor), 1.0, static_cast<double>(rc.control_divisor));
   }
   if (dc.enabled) {
-    for (std::size_t a = 0; a < msg::kGimbalAxes; ++a) {
+    for (std::size_t a = 0; a < kDriveChannels; ++a) {
       if ((drive_axes & axis_mask(a)) == 0u) continue;
       const ConfigCheck d = check_torque_current_loop(dc.axis[a], rc.drive_period_s());
       if (!d.ok) return d;
@@ -117,10 +158,10 @@ template <class Device, MonotonicClock Clock = NullClock>
 class ControllerRuntime {
  public:
   using SchedulerType = Scheduler<2, Clock>;
-  using SensorFrame = msg::SensorFrame;
-  using ActuatorFrame = msg::ActuatorFrame;
+  using SensorFrame = typename DeviceFrames<Device>::Sensor;
+  using ActuatorFrame = typename DeviceFrames<Device>::Actuator;
 
-  ControllerRuntime(const RuntimeConfig& rc, const DriveConfig& dc, std::uint32_t drive_axes,
+  ControllerRuntime(const RuntimeConfigOf<SensorFrame>& rc, const DriveConfig& dc, std::uint32_t drive_axes,
                     const Device& device, const ConfigCheck& check, Clock clock = Clock{})
       : tick_period_ns_(rc.tick_period_ns),
         device_(device),
@@ -130,7 +171,7 @@ class ControllerRuntime {
         drive_axes_(dc.enabled ? drive_axes : 0u) {
     set_held_to_safe_values();
     if (!check_.ok) return;  // refused: no task ever runs a law (the monitor still screens, for counters)
-    for (std::size_t a = 0; a < msg::kGimbalAxes; ++a) {
+    for (std::size_t a = 0; a < kDriveChannels; ++a) {
       if ((drive_axes_ & axis_mask(a)) != 0u) drives_[a] = TorqueCurrentLoop(dc.axis[a], rc.drive_period_s());
     }
     const AddResult c = scheduler_.template add_member<&ControllerRuntime::control_task>(
@@ -147,7 +188,7 @@ class ControllerRuntime {
   ControllerRuntime& operator=(const ControllerRuntime&) = delete;
 
   // One base tick (see the header). `frame` == nullptr: no frame arrived this tick. O(1).
-  void step(std::uint64_t tick, const msg::SensorFrame* frame, msg::ActuatorFrame& out) {
+  void step(std::uint64_t tick, const SensorFrame* frame, ActuatorFrame& out) {
     screened_ = monitor_.check(frame, tick);
     if (screened_ == nullptr && !reset_done_) {
       device_.reset();
@@ -197,7 +238,7 @@ class ControllerRuntime {
   std::uint32_t next_sequence() const { return sequence_; }
 
   const SchedulerType& scheduler() const { return scheduler_; }
-  const FaultMonitor& monitor() const { return monitor_; }
+  const FaultMonitorOf<SensorFrame>& monitor() const { return monitor_; }
   const Device& device() const { return device_; }
 
  protected:
@@ -217,46 +258,50 @@ class ControllerRuntime {
   void drive_task(std::uint64_t /*tick*/) {
     if (screened_ == nullptr) return;
     drive_status_ = 0;
-    for (std::size_t a = 0; a < msg::kGimbalAxes; ++a) {
+    for (std::size_t a = 0; a < kDriveChannels; ++a) {
       if ((drive_axes_ & axis_mask(a)) == 0u) continue;
-      const TorqueCurrentOutput o = drives_[a].step(held_.gimbal_torque_Nm[a], screened_->motor_current_A[a],
-                                                    screened_->gimbal_rate_rad_s[a]);
-      held_.motor_voltage_V[a] = o.voltage_V;
+      const DriveSignals& d = drive_signals()[a];
+      const TorqueCurrentOutput o = drives_[a].step(msg::signal_value(held_, d.torque),
+                                                    msg::signal_value(*screened_, d.current),
+                                                    msg::signal_value(*screened_, d.rate));
+      msg::set_signal_value(held_, d.voltage, o.voltage_V);
       if (o.saturated) drive_status_ |= bit(LawStatusBit::kDriveVoltageSaturated);
     }
   }
 
-  void set_held_to_safe_values() {
-    for (std::size_t i = 0; i < msg::kGimbalAxes; ++i) {
-      held_.gimbal_torque_Nm[i] = 0.0;
-      held_.motor_voltage_V[i] = 0.0;
+  static constexpr const DriveSignals* drive_signals() {
+    if constexpr (requires { Device::kDriveSignals; }) {
+      return Device::kDriveSignals;
+    } else {
+      return kLegacyDriveSignals;
     }
-    held_.precession_brake = 1.0;
+  }
+
+  void set_held_to_safe_values() {
+    set_safe_values(held_);
     held_.status = 0;
     drive_status_ = 0;
   }
 
-  static bool finite_command(const msg::ActuatorFrame& c) {
-    bool ok = std::isfinite(c.precession_brake);
-    for (std::size_t i = 0; i < msg::kGimbalAxes; ++i) {
-      ok = ok && std::isfinite(c.gimbal_torque_Nm[i]) && std::isfinite(c.motor_voltage_V[i]);
-    }
+  static bool finite_command(const ActuatorFrame& c) {
+    bool ok = true;
+    for (std::size_t i = 0; i < msg::signal_count_v<ActuatorFrame>; ++i) ok = ok && std::isfinite(msg::signal_value(c, i));
     return ok;
   }
 
   std::int64_t tick_period_ns_;
   Device device_;
   ConfigCheck check_;
-  FaultMonitor monitor_;
+  FaultMonitorOf<SensorFrame> monitor_;
   SchedulerType scheduler_;
-  TorqueCurrentLoop drives_[msg::kGimbalAxes]{};
+  TorqueCurrentLoop drives_[kDriveChannels]{};
   std::uint32_t drive_axes_{0};
   std::size_t control_id_{0};
   std::size_t drive_id_{0};
   bool has_drive_task_{false};
-  const msg::SensorFrame* screened_{nullptr};
+  const SensorFrame* screened_{nullptr};
   bool reset_done_{true};
-  msg::ActuatorFrame held_{};      // the command between control runs (header fields unused)
+  ActuatorFrame held_{};           // the command between control runs (header fields unused)
   std::uint32_t drive_status_{0};  // drive bits of the latest drive run
   std::uint64_t sensor_tick_{0};
   std::uint32_t sequence_{0};

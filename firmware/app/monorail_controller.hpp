@@ -4,14 +4,13 @@
 //
 // Law: firmware/control/monorail_motor_law.hpp (refuses k outside d(c + Aω_P²)/H < k < d(c + Aω_N²)/H
 // with the computed bounds in ConfigCheck::lower/upper).
-// Reads (SensorFrame): carrier_angle_rad[kRoll] = φ car tilt [rad], gimbal_rate_rad_s[kAxis2] = β'
-// [rad/s]; with the drive enabled also motor_current_A[kAxis2] [A].
-// Writes (ActuatorFrame): gimbal_torque_Nm[kAxis2] = M2 [N m] (the plant's analog law k must be 0);
-// gimbal_torque_Nm[kAxis1] = 0; precession_brake = 0 (1 only in the safe state — for a monorail the
-// "safe" locked case is no longer gyro-stabilized: the car must then rest on its stands, as in any
-// monorail fault); motor_voltage_V[kAxis2] from the current loop when the drive is enabled;
-// status bit kAxis2TorqueSaturated + the runtime's.
-// Rates: the law every control_divisor base ticks (stateless, no dt), the drive every drive_divisor ticks.
+// Frames: the monorail's own (tools/devices/monorail/monorail_signals.toml, docs/icd/monorail.md).
+// Reads tilt_rad = φ car tilt [rad], case_rate_rad_s = β' [rad/s].
+// Writes motor_torque_Nm = M2 [N m] (the plant's analog law k must be 0); precession_brake = 0 (1 only in the
+// safe state — for a monorail the "safe" locked case is no longer gyro-stabilized: the car must then rest on
+// its stands, as in any monorail fault); status bit kAxis2TorqueSaturated + the runtime's.
+// Rates: the law every control_divisor base ticks (stateless, no dt). The case motor is torque-driven (no
+// current loop: the car has no winding-current sensor).
 // Docs: docs/models/monorail.md#firmware-law
 #pragma once
 
@@ -21,28 +20,25 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/law_status_bits.hpp"
 #include "firmware/control/monorail_motor_law.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/monorail_frames.hpp"
 
 namespace gyrostab::firmware {
 
 struct MonorailConfig {
-  RuntimeConfig runtime{};
-  DriveConfig drive{};  // current loop on axis 2 (optional)
+  RuntimeConfigOf<msg::monorail::SensorFrame> runtime{};
   MonorailMotorParams law{};
 };
 
 class MonorailLaw {
  public:
-  static constexpr std::uint32_t kDriveAxes = 1u << msg::kAxis2;
+  using SensorFrame = msg::monorail::SensorFrame;
+  using ActuatorFrame = msg::monorail::ActuatorFrame;
 
   explicit MonorailLaw(const MonorailConfig& c) : law_(c.law) {}
 
-  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) const {
-    const Clipped m =
-        monorail_motor_torque(law_, in.carrier_angle_rad[msg::kRoll], in.gimbal_rate_rad_s[msg::kAxis2]);
-    cmd.gimbal_torque_Nm[msg::kAxis1] = 0.0;
-    cmd.gimbal_torque_Nm[msg::kAxis2] = m.value;
+  void control(const SensorFrame& in, ActuatorFrame& cmd) const {
+    const Clipped m = monorail_motor_torque(law_, in.tilt_rad, in.case_rate_rad_s);
+    cmd.motor_torque_Nm = m.value;
     cmd.precession_brake = 0.0;
     if (m.clipped) cmd.status |= bit(LawStatusBit::kAxis2TorqueSaturated);
   }
@@ -58,14 +54,13 @@ class BasicMonorailController : public ControllerRuntime<MonorailLaw, Clock> {
   using Config = MonorailConfig;
 
   static ConfigCheck check(const Config& c) {
-    const ConfigCheck r = check_runtime(c.runtime, c.drive, MonorailLaw::kDriveAxes);
+    const ConfigCheck r = check_runtime(c.runtime, DriveConfig{}, 0u);
     if (!r.ok) return r;
     return check_monorail_motor(c.law, c.runtime.control_period_s());
   }
 
   explicit BasicMonorailController(const Config& c, Clock clock = Clock{})
-      : ControllerRuntime<MonorailLaw, Clock>(c.runtime, c.drive, MonorailLaw::kDriveAxes, MonorailLaw(c),
-                                              check(c), clock) {}
+      : ControllerRuntime<MonorailLaw, Clock>(c.runtime, DriveConfig{}, 0u, MonorailLaw(c), check(c), clock) {}
 };
 
 using MonorailController = BasicMonorailController<>;

@@ -13,8 +13,8 @@
 // commanded d plus d_mechanical, a passive damper the plant may have (then set the commanded d lower).
 // The constructed reference car (defaults): A 3000, c 2e4, B 50, q 500, H 4000, d 200 → ω_P = 0.864,
 // ω_N = 9.447 rad/s, window 1112 < k < 14388 N m/rad; k = 7750 (default) gives max Re λ = −0.486 1/s.
-// Signals: reads SensorFrame carrier_angle_rad[kRoll] = φ (car tilt) [rad], gimbal_rate_rad_s[kAxis2] = β'
-// [rad/s]. Writes ActuatorFrame gimbal_torque_Nm[kAxis2] = M2 [N m], clipped to ±torque_limit_Nm. The plant's
+// Signals: reads φ (car tilt, tilt_rad) [rad] and β' (case_rate_rad_s) [rad/s]; gives M2 (motor_torque_Nm)
+// [N m], clipped to ±torque_limit_Nm (the monorail's signal table, docs/icd/monorail.md). The plant's
 // own analog motor law (sim/models/monorail.hpp, MonorailParams::k) must be 0 when this law drives M2.
 // Sampled: d T / B ≤ 0.5 (sampled_loop_limits.hpp); defaults at 1 ms: 0.004.
 // State: none. O(1), no heap. Tests: tests/unit/control_laws_test.cpp (sign, saturation, window refusal on

@@ -32,8 +32,8 @@
 // operator's decision. acknowledge() also resynchronises the sequence tracking (a restarted sensor side
 // starts again at sequence 0).
 //
-// Resources: one SensorFrame copy (the last good frame) and counters; no heap, no OS. check() is
-// O(kSensorSignalCount), apply() O(1).
+// Generic over the device's typed sensor frame (its values and their ranges walked in frame order). Resources:
+// one frame copy (the last good frame) and counters; no heap, no OS. check() is O(values), apply() O(commands).
 #pragma once
 
 #include <cmath>
@@ -41,14 +41,15 @@
 
 #include "firmware/fault/safe_state.hpp"
 #include "firmware/fault/sensor_ranges.hpp"
-#include "firmware/msg/actuator_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
 #include "firmware/msg/fault_bits.hpp"
 #include "firmware/msg/sensor_frame.hpp"
 
 namespace gyrostab::firmware {
 
-struct FaultMonitorConfig {
-  SensorRanges ranges{};           // plausible range of every signal
+template <class SensorFrame>
+struct FaultMonitorConfigOf {
+  typename SensorFrame::Ranges ranges{};  // plausible range of every value (the table's by default)
   std::uint32_t hold_ticks{1};     // consecutive bad ticks bridged with the last good frame [tick]
   std::uint64_t max_age_ticks{0};  // how far frame.tick may lag the controller's tick (0: same tick) [tick]
   // SensorStatusBits that count as a fault (a saturated rate gyro is reported, not a fault) [bits].
@@ -56,6 +57,9 @@ struct FaultMonitorConfig {
                                     msg::bit(msg::SensorStatusBit::kDriveFault) |
                                     msg::bit(msg::SensorStatusBit::kRotorSpeedInvalid)};
 };
+
+// The shared legacy frame's configuration, for the devices not yet on a table of their own.
+using FaultMonitorConfig = FaultMonitorConfigOf<msg::SensorFrame>;
 
 enum class MonitorState : std::uint8_t { kAwaitingFirstFrame, kNormal, kHolding, kSafe };
 
@@ -72,19 +76,21 @@ struct FaultCounters {
   std::uint64_t trips{0};                                    // entries into kSafe [-]
   std::uint64_t recoveries{0};                               // acknowledged returns from kSafe to kNormal [-]
   std::uint64_t acknowledgements_refused{0};                 // acknowledge() followed by a bad frame [-]
-  SensorSignal last_non_finite_signal{SensorSignal::kNone};  // latest signal found NaN/Inf
-  SensorSignal last_out_of_range_signal{SensorSignal::kNone};  // latest signal found out of range
+  std::uint8_t last_non_finite_signal{kNoSignal};    // value index of the latest signal found NaN/Inf
+  std::uint8_t last_out_of_range_signal{kNoSignal};  // value index of the latest signal found out of range
 };
 
-class FaultMonitor {
+template <class SensorFrame>
+class FaultMonitorOf {
  public:
-  explicit FaultMonitor(const FaultMonitorConfig& config = {}) : config_(config) {}
+  using Config = FaultMonitorConfigOf<SensorFrame>;
+  explicit FaultMonitorOf(const Config& config = {}) : config_(config) {}
 
   // Checks this tick's frame (`frame` == nullptr: none arrived) at controller tick `tick` and steps the state
   // machine. Returns the frame the control laws must use this tick — this tick's frame if good, the held last
   // good frame while holding — or nullptr when they must not run (awaiting the first frame, safe state).
   // The pointer stays valid until the next check().
-  const msg::SensorFrame* check(const msg::SensorFrame* frame, std::uint64_t tick) {
+  const SensorFrame* check(const SensorFrame* frame, std::uint64_t tick) {
     causes_ = classify(frame, tick);
     const bool good = causes_ == 0;
     if (good) {
@@ -136,7 +142,8 @@ class FaultMonitor {
 
   // Adds the monitor's status bits to `command` and, awaiting the first frame or in the safe state, replaces
   // its commands with the safe command. Call on every ActuatorFrame after the control laws. O(1).
-  void apply(msg::ActuatorFrame& command) const {
+  template <msg::TypedFrame ActuatorFrame>
+  void apply(ActuatorFrame& command) const {
     command.status |= status();
     if (state_ == MonitorState::kAwaitingFirstFrame || state_ == MonitorState::kSafe) {
       command_safe_state(command);
@@ -171,12 +178,12 @@ class FaultMonitor {
   MonitorState state() const { return state_; }
   std::uint32_t causes() const { return causes_; }  // cause bits found by the latest check()
   const FaultCounters& counters() const { return counters_; }
-  const msg::SensorFrame& last_good() const { return last_good_; }
-  const FaultMonitorConfig& config() const { return config_; }
+  const SensorFrame& last_good() const { return last_good_; }
+  const Config& config() const { return config_; }
 
  private:
   // The cause bits of this tick's frame; updates the per-cause counters and the sequence tracking.
-  std::uint32_t classify(const msg::SensorFrame* frame, std::uint64_t tick) {
+  std::uint32_t classify(const SensorFrame* frame, std::uint64_t tick) {
     using msg::FaultBit;
     if (frame == nullptr) {
       ++counters_.missing;
@@ -197,7 +204,7 @@ class FaultMonitor {
     seen_sequence_ = frame->sequence;
 
     std::uint32_t causes = 0;
-    for_each_signal(*frame, config_.ranges, [&](SensorSignal id, double value, const Range& range) {
+    for_each_signal(*frame, config_.ranges, [&](std::uint8_t id, double value, const Range& range) {
       if (!std::isfinite(value)) {
         causes |= msg::bit(FaultBit::kSensorNonFinite);
         counters_.last_non_finite_signal = id;
@@ -215,9 +222,9 @@ class FaultMonitor {
     return causes;
   }
 
-  FaultMonitorConfig config_;
+  Config config_;
   MonitorState state_{MonitorState::kAwaitingFirstFrame};
-  msg::SensorFrame last_good_{};
+  SensorFrame last_good_{};
   FaultCounters counters_{};
   std::uint32_t causes_{0};   // this tick's causes
   std::uint32_t reason_{0};   // causes of the current run of bad ticks (latched in kSafe)
@@ -227,5 +234,8 @@ class FaultMonitor {
   std::uint64_t seen_tick_{0};
   std::uint32_t seen_sequence_{0};
 };
+
+// The shared legacy frame's monitor, for the devices not yet on a table of their own.
+using FaultMonitor = FaultMonitorOf<msg::SensorFrame>;
 
 }  // namespace gyrostab::firmware

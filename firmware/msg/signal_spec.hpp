@@ -18,6 +18,13 @@ inline constexpr std::size_t kFrameHeaderBytes = 32;
 inline constexpr std::size_t kMaxSensorSignals = 32;
 inline constexpr std::size_t kMaxCommandSignals = 16;
 
+// Closed interval [min, max] in the unit of the signal it guards. NaN is never contained.
+struct Range {
+  double min{0.0};
+  double max{0.0};
+  constexpr bool contains(double x) const { return min <= x && x <= max; }
+};
+
 // One value of a frame (an array signal has one spec per element, `element` counting from 0).
 struct SignalSpec {
   std::string_view name;    // the table's name: C++ field, LCM field, the element's base name

@@ -5,10 +5,10 @@
 // controller reads: car tilt (AHRS relative to the local level: white noise, bias), car roll rate gyro (noise
 // density), case-angle encoder (incremental, nearest count) and case rate gyro (noise density, bias).
 //
-// State: [φ, β, φ', β'] — car tilt and case angle — in rad and rad/s (named accessors below). Inputs
-// (ActuatorFrame): gimbal_torque_Nm[kAxis2] = motor torque M2 [N m]; precession_brake in [0, 1] ×
-// brake_full_Nms [N m s/rad] on β' (the safe state). Outputs (SensorFrame): carrier_angle_rad[kRoll],
-// carrier_rate_rad_s[kRoll], encoder_count / gimbal_angle_rad / gimbal_rate_rad_s [kAxis2].
+// State: [φ, β, φ', β'] — car tilt and case angle — in rad and rad/s (named accessors below). Frames: the
+// monorail's own (tools/devices/monorail/monorail_signals.toml, docs/icd/monorail.md): in, motor_torque_Nm =
+// M2 [N m] and precession_brake in [0, 1] × brake_full_Nms [N m s/rad] on β' (the safe state); out, tilt_rad,
+// tilt_rate_rad_s, case_encoder_count, case_angle_rad, case_rate_rad_s.
 // Random streams of the scene seed, one per consumer (seeded_rng.hpp): 1 tilt, 2 tilt rate, 3 case rate;
 // adding a consumer never shifts another.
 // Allocation-free after construction. Docs: docs/models/monorail.md. Oracle: tests/oracle/monorail_test.cpp
@@ -20,8 +20,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/monorail_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/monorail.hpp"
@@ -56,6 +55,8 @@ struct MonorailPlantParams {
 
 class MonorailPlant {
  public:
+  using SensorFrame = msg::monorail::SensorFrame;
+  using ActuatorFrame = msg::monorail::ActuatorFrame;
   using Car = models::Monorail;
   using Dynamics = CarOnTrack;
   using State = Dynamics::State;
@@ -83,18 +84,18 @@ class MonorailPlant {
     x_ = Car::make_state(p.phi0, p.beta0, 0.0, 0.0);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
-    f.carrier_angle_rad[msg::kRoll] = tilt_rad() + tilt_noise_.sample(rng_tilt_);
-    f.carrier_rate_rad_s[msg::kRoll] = tilt_rate_rad_s() + tilt_rate_noise_.sample(rng_tilt_rate_);
+    f.tilt_rad = tilt_rad() + tilt_noise_.sample(rng_tilt_);
+    f.tilt_rate_rad_s = tilt_rate_rad_s() + tilt_rate_noise_.sample(rng_tilt_rate_);
     const std::int64_t counts = encoder_.counts(case_angle_rad());
-    f.encoder_count[msg::kAxis2] = static_cast<std::int32_t>(counts);
-    f.gimbal_angle_rad[msg::kAxis2] = encoder_.angle_of(counts);
-    f.gimbal_rate_rad_s[msg::kAxis2] = case_rate_rad_s() + case_rate_noise_.sample(rng_case_rate_);
+    f.case_encoder_count = static_cast<double>(static_cast<std::int32_t>(counts));
+    f.case_angle_rad = encoder_.angle_of(counts);
+    f.case_rate_rad_s = case_rate_rad_s() + case_rate_noise_.sample(rng_case_rate_);
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
-    car_.command_Nm = cmd.gimbal_torque_Nm[msg::kAxis2];
+  void actuate(const ActuatorFrame& cmd) {
+    car_.command_Nm = cmd.motor_torque_Nm;
     car_.brake_Nms = std::clamp(cmd.precession_brake, 0.0, 1.0) * p_.brake_full_Nms;
   }
 

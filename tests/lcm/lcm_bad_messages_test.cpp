@@ -11,7 +11,7 @@
 #include <cstring>
 #include <limits>
 
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/monorail_frames.hpp"
 #include "hil/lcm/frame_codec.hpp"
 #include "tools/signals/device_signals.hpp"
 #include "tests/lcm/lcm_test_support.hpp"
@@ -43,7 +43,7 @@ struct Forger {
     ++forged;
   }
 
-  void on_sensor(const msg::SensorFrame& s) {
+  void on_sensor(const msg::monorail::SensorFrame& s) {
     const auto k = static_cast<std::int64_t>(s.tick);
     // Genuine ticks only go up (our own stale, repeated and far-ahead forgeries come back to us too).
     if (last_sensor_tick >= 0 && (k <= last_sensor_tick || k > last_sensor_tick + 1000)) return;
@@ -53,11 +53,11 @@ struct Forger {
       publish(kSensorChannel, s, +1);
       publish(kSensorChannel, s, 0, true);
       // Stale: five ticks old, well formed. Far ahead: beyond what the controller may skip.
-      msg::SensorFrame old = s;
+      msg::monorail::SensorFrame old = s;
       old.tick -= 5;
       old.sequence -= 5;
       publish(kSensorChannel, old);
-      msg::SensorFrame ahead = s;
+      msg::monorail::SensorFrame ahead = s;
       ahead.tick += 5000;
       ahead.sequence += 5000;
       publish(kSensorChannel, ahead);
@@ -69,23 +69,23 @@ struct Forger {
   // (both left the controller's one sendmsg), so the forgeries reach a plant that has already taken tick k —
   // they are rejected whatever the machine's load, and the run stays bit-identical. (A bad command that comes
   // BEFORE the genuine one is the lockstep grace rule's case: tests/unit/lcm_link_test.cpp.)
-  void on_actuator(const msg::ActuatorFrame& a) {
+  void on_actuator(const msg::monorail::ActuatorFrame& a) {
     const auto k = static_cast<std::int64_t>(a.tick);
     if (k > last_sensor_tick || k <= last_copied_actuator ||
-        !std::isfinite(a.gimbal_torque_Nm[msg::kAxis2]) || a.precession_brake > 1.0 ||
-        std::fabs(a.gimbal_torque_Nm[msg::kAxis2]) > 2000.0) {
+        !std::isfinite(a.motor_torque_Nm) || a.precession_brake > 1.0 ||
+        std::fabs(a.motor_torque_Nm) > 2000.0) {
       return;  // one of ours
     }
     if (k % 10 == 7) {
       last_copied_actuator = k;
-      msg::ActuatorFrame bad = a;  // NaN torque, then a brake out of [0, 1], for the tick just taken
-      bad.gimbal_torque_Nm[msg::kAxis2] = std::numeric_limits<double>::quiet_NaN();
+      msg::monorail::ActuatorFrame bad = a;  // NaN torque, then a brake out of [0, 1], for the tick just taken
+      bad.motor_torque_Nm = std::numeric_limits<double>::quiet_NaN();
       publish(kActuatorChannel, bad);
       bad = a;
       bad.precession_brake = 2.0;
       publish(kActuatorChannel, bad);
       bad = a;  // beyond the scene's torque limit (monorail: 2000 N m)
-      bad.gimbal_torque_Nm[msg::kAxis2] = 2000.5;
+      bad.motor_torque_Nm = 2000.5;
       publish(kActuatorChannel, bad);
       publish(kActuatorChannel, a, +1);  // wrong sizes, wrong fingerprint
       publish(kActuatorChannel, a, -1);
@@ -95,13 +95,13 @@ struct Forger {
     if (k % 10 != 3) return;
     last_copied_actuator = k;
     publish(kActuatorChannel, a);  // exact repeat of the command the plant just accepted
-    msg::ActuatorFrame old = a;    // stale: an older tick with a well-formed command
+    msg::monorail::ActuatorFrame old = a;    // stale: an older tick with a well-formed command
     old.tick -= 2;
     old.sequence -= 2;
     publish(kActuatorChannel, old);
     // Ahead: a later tick than the plant waits for — beyond the run, so that however late this copy arrives
     // (a loaded machine) the plant is never waiting for exactly that tick when it does.
-    msg::ActuatorFrame ahead = a;
+    msg::monorail::ActuatorFrame ahead = a;
     ahead.tick += 5000;
     ahead.sequence += 5000;
     publish(kActuatorChannel, ahead);
@@ -112,7 +112,7 @@ void on_message(const lcm_recv_buf_t* rbuf, const char* channel, void* user) {
   auto* f = static_cast<Forger*>(user);
   if (kSensorChannel == channel) {
     msg::AnySensorFrame any{};
-    msg::SensorFrame s{};
+    msg::monorail::SensorFrame s{};
     if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), f->device, any, nullptr, &f->envelope) ==
         hil::DecodeError::kOk) {
       msg::from_any(any, s);
@@ -120,7 +120,7 @@ void on_message(const lcm_recv_buf_t* rbuf, const char* channel, void* user) {
     }
   } else {
     msg::AnyActuatorFrame any{};
-    msg::ActuatorFrame a{};
+    msg::monorail::ActuatorFrame a{};
     if (hil::decode(rbuf->data, static_cast<int>(rbuf->data_size), f->device, any, nullptr, &f->envelope) ==
         hil::DecodeError::kOk) {
       msg::from_any(any, a);
@@ -165,7 +165,7 @@ TEST(LcmBadMessages, AreCountedByKindAndNeverApplied) {
     EXPECT_GT(plant[kind].get<int>(), 0) << "plant: " << kind << " " << plant.dump();
   }
   EXPECT_EQ(r["link"]["counters"]["accepted"], 3000);
-  EXPECT_EQ(r["link"]["actuator_limits"]["torque_Nm"][1], 2000.0);
+  EXPECT_EQ(r["link"]["actuator_limits"]["motor_torque_Nm"]["magnitude_limit"], 2000.0);
   // Per forging round (every 10th tick): one NaN, then two out of range (brake, torque). The plant stops
   // reading after its last tick, so the last round may be cut after its NaN (seen under the sanitizers).
   const int nan_frames = plant["non_finite"].get<int>();

@@ -26,14 +26,16 @@ std::uint64_t refused(const nlohmann::json& link, const char* kind) {
 
 TEST(LcmSession, TwoRunsOnTheSameChannelsRefuseEachOthersFrames) {
   TempDir d;
-  const std::string a = scene("monorail.toml"), b = scene("power-stabilizer.toml");
+  // Two scenes of one device (the same frame types): their frames reach each other's guards, which refuse them
+  // as another session's (frames of another device's types are refused by fingerprint before that).
+  const std::string a = scene("ship-roll-damper-active.toml"), b = scene("ship-roll-damper-passive.toml");
   const Outputs ref_a = in_process(a, d / "ref_a", "3000"), ref_b = in_process(b, d / "ref_b", "3000");
   const std::vector<std::string> shared{"--transport", "lcm", "--ticks", "3000", "--channel-suffix", "_shared"};
   const pid_t pa = spawn(cat({gyrostab_bin(), "run", a, "--out", d / "a"}, shared));
   const pid_t pb = spawn(cat({gyrostab_bin(), "run", b, "--out", d / "b"}, shared));
   const Exit ea = wait_for(pa), eb = wait_for(pb);
-  expect_identical(ref_a, outputs_of(d / "a"), "monorail sharing its channels");
-  expect_identical(ref_b, outputs_of(d / "b"), "power stabilizer sharing its channels");
+  expect_identical(ref_a, outputs_of(d / "a"), "active damper sharing its channels");
+  expect_identical(ref_b, outputs_of(d / "b"), "passive damper sharing its channels");
   // The overlap is seen by whichever process listened while the other pair talked — a run's plant or its
   // controller process — so the test counts both of each run.
   std::uint64_t seen = 0;

@@ -103,14 +103,14 @@ TEST(MonorailSampled, ProbedLawIsTheFirmwareLaw) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-0.05, 0.05);
   for (int n = 0; n < 100; ++n) {
-    msg::SensorFrame in{};
-    in.carrier_angle_rad[msg::kRoll] = u(rng);
-    in.gimbal_rate_rad_s[msg::kAxis2] = u(rng);
-    in.gimbal_angle_rad[msg::kAxis2] = u(rng);  // not read by the law
-    msg::ActuatorFrame out{};
+    firmware::MonorailLaw::SensorFrame in{};
+    in.tilt_rad = u(rng);
+    in.case_rate_rad_s = u(rng);
+    in.case_angle_rad = u(rng);  // not read by the law
+    firmware::MonorailLaw::ActuatorFrame out{};
     fw.control(in, out);
-    const double m = law.D(0, 0) * in.carrier_angle_rad[msg::kRoll] + law.D(0, 1) * in.gimbal_rate_rad_s[msg::kAxis2];
-    EXPECT_NEAR(m, out.gimbal_torque_Nm[msg::kAxis2], 1e-12 * 300.0);
+    const double m = law.D(0, 0) * in.tilt_rad + law.D(0, 1) * in.case_rate_rad_s;
+    EXPECT_NEAR(m, out.motor_torque_Nm, 1e-12 * 300.0);
   }
 }
 

@@ -29,7 +29,16 @@ using msg::SensorFrame;
 
 constexpr std::int64_t kTickNs = 1'000'000;
 
-// A plausible frame for tick k with every signal a device may read set, small and varying with k.
+template <class Frame>
+void set_header(Frame& f, std::uint64_t k) {
+  f.tick = k;
+  f.time_ns = static_cast<std::int64_t>(k) * kTickNs;
+  f.sample_time_ns = f.time_ns;
+  f.sequence = static_cast<std::uint32_t>(k + 7);
+}
+
+// A plausible frame of the shared legacy table for tick k with every signal a device may read set, small and
+// varying with k.
 SensorFrame good_frame(std::uint64_t k) {
   const double x = static_cast<double>(k % 100) * 1e-5;
   SensorFrame f{};
@@ -49,16 +58,35 @@ SensorFrame good_frame(std::uint64_t k) {
   return f;
 }
 
-bool is_safe_command(const ActuatorFrame& c) {
-  return c.gimbal_torque_Nm[0] == 0.0 && c.gimbal_torque_Nm[1] == 0.0 && c.motor_voltage_V[0] == 0.0 &&
-         c.motor_voltage_V[1] == 0.0 && c.precession_brake == 1.0 && msg::has(c.status, FaultBit::kSafeState);
+// Every command at its signal table's safe value (written out for the legacy table: zero torques and
+// voltages, the brake on) and the safe-state bit.
+template <class Frame>
+bool is_safe_command(const Frame& c) {
+  const auto specs = msg::specs_of<Frame>();
+  for (std::size_t i = 0; i < specs.size(); ++i)
+    if (msg::signal_value(c, i) != specs[i].safe) return false;
+  return msg::has(c.status, FaultBit::kSafeState);
 }
+static_assert(msg::specs_of<ActuatorFrame>()[msg::CommandIndex::precession_brake].safe == 1.0);
+
+// Traits of the devices still on the legacy table: their frames, a good frame, the law's main torque, and two
+// frames with a NaN in a signal the law reads.
+struct LegacyFrames {
+  using SensorFrame = msg::SensorFrame;
+  using ActuatorFrame = msg::ActuatorFrame;
+  static SensorFrame frame(std::uint64_t k) { return good_frame(k); }
+  static double torque(const ActuatorFrame& c) { return c.gimbal_torque_Nm[msg::kAxis2]; }
+  static void poison(SensorFrame& f5, SensorFrame& f6) {
+    f5.gimbal_rate_rad_s[msg::kAxis2] = std::numeric_limits<double>::quiet_NaN();
+    f6.carrier_rate_rad_s[msg::kRoll] = std::numeric_limits<double>::quiet_NaN();
+  }
+};
 
 // ------------------------------------------------------------------------------ one traits type per device
 // Each: the controller type, a default Config, and the expected command of a fresh controller on frame f
 // (first control run; for the servo gyro the PI integral is still zero then).
 
-struct ShipActive {
+struct ShipActive : LegacyFrames {
   using Controller = ShipRollDamperController;
   static Controller::Config config() { return {}; }
   static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
@@ -74,7 +102,7 @@ struct ShipActive {
   }
 };
 
-struct ShipPassive {
+struct ShipPassive : LegacyFrames {
   using Controller = ShipRollDamperController;
   static Controller::Config config() {
     Controller::Config c{};
@@ -91,18 +119,33 @@ struct ShipPassive {
 
 struct Monorail {
   using Controller = MonorailController;
+  using SensorFrame = msg::monorail::SensorFrame;
+  using ActuatorFrame = msg::monorail::ActuatorFrame;
   static Controller::Config config() { return {}; }
+  static SensorFrame frame(std::uint64_t k) {
+    const double x = static_cast<double>(k % 100) * 1e-5;
+    SensorFrame f{};
+    set_header(f, k);
+    f.tilt_rad = 0.02 + x;
+    f.tilt_rate_rad_s = 0.01 - x;
+    f.case_angle_rad = 0.03 - x;
+    f.case_rate_rad_s = -0.01 + x;
+    return f;
+  }
+  static double torque(const ActuatorFrame& c) { return c.motor_torque_Nm; }
+  static void poison(SensorFrame& f5, SensorFrame& f6) {
+    f5.case_rate_rad_s = std::numeric_limits<double>::quiet_NaN();
+    f6.tilt_rate_rad_s = std::numeric_limits<double>::quiet_NaN();
+  }
   static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
     const MonorailMotorParams p{};
-    const double M2 =
-        p.k * f.carrier_angle_rad[msg::kRoll] - p.d * f.gimbal_rate_rad_s[msg::kAxis2];  // (14.2)
-    EXPECT_DOUBLE_EQ(c.gimbal_torque_Nm[msg::kAxis2], M2);
-    EXPECT_EQ(c.gimbal_torque_Nm[msg::kAxis1], 0.0);
+    const double M2 = p.k * f.tilt_rad - p.d * f.case_rate_rad_s;  // (14.2)
+    EXPECT_DOUBLE_EQ(c.motor_torque_Nm, M2);
     EXPECT_EQ(c.precession_brake, 0.0);
   }
 };
 
-struct ServoGyro {
+struct ServoGyro : LegacyFrames {
   using Controller = ServoGyroController;
   static Controller::Config config() {
     Controller::Config c{};
@@ -121,7 +164,7 @@ struct ServoGyro {
   }
 };
 
-struct PowerStabilizer {
+struct PowerStabilizer : LegacyFrames {
   using Controller = PowerStabilizerController;
   static Controller::Config config() { return {}; }
   static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
@@ -150,8 +193,8 @@ TYPED_TEST(ControllerTest, DefaultConfigIsAccepted) {
 
 TYPED_TEST(ControllerTest, GoodFrameGivesTheLawsCommandWithTheHeader) {
   typename TypeParam::Controller ctl(TypeParam::config());
-  const SensorFrame f = good_frame(0);
-  ActuatorFrame out{};
+  const typename TypeParam::SensorFrame f = TypeParam::frame(0);
+  typename TypeParam::ActuatorFrame out{};
   ctl.step(0, &f, out);
   TypeParam::expect_command(f, out);
   EXPECT_EQ(out.tick, 0u);
@@ -159,15 +202,17 @@ TYPED_TEST(ControllerTest, GoodFrameGivesTheLawsCommandWithTheHeader) {
   EXPECT_EQ(out.sequence, 0u);
   EXPECT_EQ(out.time_ns, 0);
   EXPECT_EQ(out.status & 0xFFFFu, 0u) << "no fault-monitor bit on a good frame";
-  EXPECT_EQ(out.motor_voltage_V[0], 0.0);  // drive disabled by default: torque-mode drives
-  EXPECT_EQ(out.motor_voltage_V[1], 0.0);
+  if constexpr (requires { out.motor_voltage_V; }) {
+    EXPECT_EQ(out.motor_voltage_V[0], 0.0);  // drive disabled by default: torque-mode drives
+    EXPECT_EQ(out.motor_voltage_V[1], 0.0);
+  }
 }
 
 TYPED_TEST(ControllerTest, HeaderEchoesTheTickAndCountsTheSequence) {
   typename TypeParam::Controller ctl(TypeParam::config());
-  ActuatorFrame out{};
+  typename TypeParam::ActuatorFrame out{};
   for (std::uint64_t k = 0; k < 50; ++k) {
-    const SensorFrame f = good_frame(k);
+    const typename TypeParam::SensorFrame f = TypeParam::frame(k);
     ctl.step(k, &f, out);
     ASSERT_EQ(out.tick, k);
     ASSERT_EQ(out.sensor_tick, k);
@@ -183,14 +228,15 @@ TYPED_TEST(ControllerTest, HeaderEchoesTheTickAndCountsTheSequence) {
 // Ticks 0..4 good, then `bad` at ticks 5 and 6: 5 is held (the command from frame 4), 6 is the safe state
 // with `reason`; the sequence keeps counting.
 template <class Traits>
-void expect_hold_then_safe(const SensorFrame* bad5, const SensorFrame* bad6, FaultBit reason) {
+void expect_hold_then_safe(const typename Traits::SensorFrame* bad5, const typename Traits::SensorFrame* bad6,
+                           FaultBit reason) {
   typename Traits::Controller ctl(Traits::config());
-  ActuatorFrame out{};
+  typename Traits::ActuatorFrame out{};
   for (std::uint64_t k = 0; k < 5; ++k) {
-    const SensorFrame f = good_frame(k);
+    const typename Traits::SensorFrame f = Traits::frame(k);
     ctl.step(k, &f, out);
   }
-  const ActuatorFrame before = out;
+  const typename Traits::ActuatorFrame before = out;
   ctl.step(5, bad5, out);
   EXPECT_TRUE(msg::has(out.status, FaultBit::kHoldingLastGood));
   EXPECT_TRUE(msg::has(out.status, reason));
@@ -199,9 +245,9 @@ void expect_hold_then_safe(const SensorFrame* bad5, const SensorFrame* bad6, Fau
   EXPECT_EQ(out.tick, 5u);
   EXPECT_EQ(out.sequence, 5u);
   EXPECT_EQ(out.precession_brake, 0.0);
-  EXPECT_TRUE(std::isfinite(out.gimbal_torque_Nm[msg::kAxis2]));
+  EXPECT_TRUE(std::isfinite(Traits::torque(out)));
   if constexpr (!std::is_same_v<Traits, ServoGyro>) {  // static laws: the same frame gives the same torque
-    EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis2], before.gimbal_torque_Nm[msg::kAxis2]);
+    EXPECT_EQ(Traits::torque(out), Traits::torque(before));
   }
   ctl.step(6, bad6, out);
   EXPECT_TRUE(is_safe_command(out));
@@ -209,7 +255,7 @@ void expect_hold_then_safe(const SensorFrame* bad5, const SensorFrame* bad6, Fau
   EXPECT_FALSE(msg::has(out.status, FaultBit::kHoldingLastGood));
   EXPECT_EQ(out.sequence, 6u);
   // Latched: good frames do not release it without acknowledge().
-  const SensorFrame f7 = good_frame(7);
+  const typename Traits::SensorFrame f7 = Traits::frame(7);
   ctl.step(7, &f7, out);
   EXPECT_TRUE(is_safe_command(out));
   EXPECT_EQ(ctl.fault_counters().trips, 1u);
@@ -220,19 +266,18 @@ TYPED_TEST(ControllerTest, MissingFrameIsHeldOneTickThenSafeStateWithTheReason) 
 }
 
 TYPED_TEST(ControllerTest, NaNFrameIsHeldOneTickThenSafeStateWithTheReason) {
-  SensorFrame f5 = good_frame(5), f6 = good_frame(6);
-  f5.gimbal_rate_rad_s[msg::kAxis2] = std::numeric_limits<double>::quiet_NaN();
-  f6.carrier_rate_rad_s[msg::kRoll] = std::numeric_limits<double>::quiet_NaN();
+  typename TypeParam::SensorFrame f5 = TypeParam::frame(5), f6 = TypeParam::frame(6);
+  TypeParam::poison(f5, f6);
   expect_hold_then_safe<TypeParam>(&f5, &f6, FaultBit::kSensorNonFinite);
 }
 
 TYPED_TEST(ControllerTest, BeforeTheFirstFrameTheOutputIsTheSafeCommand) {
   typename TypeParam::Controller ctl(TypeParam::config());
-  ActuatorFrame out{};
+  typename TypeParam::ActuatorFrame out{};
   ctl.step(0, nullptr, out);
   EXPECT_TRUE(is_safe_command(out));
   EXPECT_TRUE(msg::has(out.status, FaultBit::kAwaitingFirstFrame));
-  const SensorFrame f = good_frame(1);
+  const typename TypeParam::SensorFrame f = TypeParam::frame(1);
   ctl.step(1, &f, out);
   EXPECT_FALSE(msg::has(out.status, FaultBit::kSafeState));
   TypeParam::expect_command(f, out);
@@ -240,16 +285,16 @@ TYPED_TEST(ControllerTest, BeforeTheFirstFrameTheOutputIsTheSafeCommand) {
 
 TYPED_TEST(ControllerTest, AcknowledgeThenAGoodFrameRestartsTheLawFromAFreshState) {
   typename TypeParam::Controller ctl(TypeParam::config());
-  ActuatorFrame out{};
+  typename TypeParam::ActuatorFrame out{};
   for (std::uint64_t k = 0; k < 3; ++k) {
-    const SensorFrame f = good_frame(k);
+    const typename TypeParam::SensorFrame f = TypeParam::frame(k);
     ctl.step(k, &f, out);
   }
   ctl.step(3, nullptr, out);
   ctl.step(4, nullptr, out);
   ASSERT_TRUE(is_safe_command(out));
   ctl.acknowledge();
-  const SensorFrame f = good_frame(5);
+  const typename TypeParam::SensorFrame f = TypeParam::frame(5);
   ctl.step(5, &f, out);
   EXPECT_FALSE(msg::has(out.status, FaultBit::kSafeState));
   EXPECT_EQ(ctl.fault_counters().recoveries, 1u);
@@ -258,14 +303,14 @@ TYPED_TEST(ControllerTest, AcknowledgeThenAGoodFrameRestartsTheLawFromAFreshStat
 
 TYPED_TEST(ControllerTest, ZeroHeapAllocationsOverAMillionSteps) {
   typename TypeParam::Controller ctl(TypeParam::config());
-  ActuatorFrame out{};
+  typename TypeParam::ActuatorFrame out{};
   double sink = 0.0;
-  SensorFrame f = good_frame(0);
+  typename TypeParam::SensorFrame f = TypeParam::frame(0);
   testing::AllocationCounter c;
   for (std::uint64_t k = 0; k < 1'000'000; ++k) {
-    f = good_frame(k);
+    f = TypeParam::frame(k);
     ctl.step(k, (k % 1000 == 999) ? nullptr : &f, out);  // an occasional missing frame: the holding path too
-    sink += out.gimbal_torque_Nm[msg::kAxis2];
+    sink += TypeParam::torque(out);
   }
   EXPECT_EQ(c.count(), 0u);
   EXPECT_TRUE(std::isfinite(sink));
@@ -284,9 +329,9 @@ TEST(ControllerRuntime, ARefusedMonorailGainGivesTheBoundsAndOnlyTheSafeCommand)
   EXPECT_NEAR(c.upper, 14388.0, 0.5);
   MonorailController ctl(cfg);
   EXPECT_FALSE(ctl.armed());
-  ActuatorFrame out{};
+  Monorail::ActuatorFrame out{};
   for (std::uint64_t k = 0; k < 5; ++k) {
-    const SensorFrame f = good_frame(k);
+    const Monorail::SensorFrame f = Monorail::frame(k);
     ctl.step(k, &f, out);
     ASSERT_TRUE(is_safe_command(out));
     ASSERT_TRUE((out.status & bit(LawStatusBit::kConfigRefused)) != 0u);
@@ -316,31 +361,34 @@ TEST(ControllerRuntime, DivisorsMustNestAndThePeriodMustBePositive) {
 }
 
 TEST(ControllerRuntime, FastBaseTickRunsTheLawEveryTenthTickAndTheDriveEveryTick) {
-  // Base 100 µs: law at 1 kHz (control_divisor 10), current loop at 10 kHz (drive_divisor 1). The torque
+  // Base 100 µs: law at 1 kHz (control_divisor 10), current loops at 10 kHz (drive_divisor 1). The torque
   // changes only on control ticks (k ≡ 0 mod 10, held in between); the voltage is recomputed every tick.
-  MonorailConfig cfg{};
+  PowerStabilizerControllerConfig cfg{};
   cfg.runtime.tick_period_ns = 100'000;
   cfg.runtime.control_divisor = 10;
   cfg.runtime.drive_divisor = 1;
   cfg.drive.enabled = true;
-  cfg.drive.axis[msg::kAxis2].bandwidth_rad_s = 2000.0;        // ω_c T_d = 0.2 ≤ ln(4/3)
-  cfg.drive.axis[msg::kAxis2].torque_constant_Nm_per_A = 1e3;  // i_ref = M2/k_t ≈ 0.1 A: no saturation
-  ASSERT_TRUE(MonorailController::check(cfg).ok) << MonorailController::check(cfg).reason;
-  MonorailController ctl(cfg);
+  for (TorqueCurrentLoopParams& d : cfg.drive.axis) {
+    d.bandwidth_rad_s = 2000.0;           // ω_c T_d = 0.2 ≤ ln(4/3)
+    d.torque_constant_Nm_per_A = 1e3;     // i_ref = M/k_t small: no saturation
+  }
+  ASSERT_TRUE(PowerStabilizerController::check(cfg).ok) << PowerStabilizerController::check(cfg).reason;
+  PowerStabilizerController ctl(cfg);
+  const PowerStabilizerConfig& p = cfg.loops;
   ActuatorFrame out{};
   double torque_at_last_control = 0.0, last_voltage = 0.0;
   int voltage_changes = 0;
   for (std::uint64_t k = 0; k < 100; ++k) {
     SensorFrame f = good_frame(k);
     f.time_ns = static_cast<std::int64_t>(k) * 100'000;
-    f.carrier_angle_rad[msg::kRoll] = 0.01 + 1e-4 * static_cast<double>(k);  // φ changes every tick
+    f.gimbal_angle_rad[msg::kAxis1] = 0.01 + 1e-4 * static_cast<double>(k);  // α changes every tick
     f.motor_current_A[msg::kAxis2] = 1e-3 * static_cast<double>(k % 7);      // and so does the current
     ctl.step(k, &f, out);
     ASSERT_EQ(out.time_ns, static_cast<std::int64_t>(k) * 100'000);
     if (k % 10 == 0) {
       torque_at_last_control = out.gimbal_torque_Nm[msg::kAxis2];
       ASSERT_DOUBLE_EQ(torque_at_last_control,
-                       7750.0 * f.carrier_angle_rad[msg::kRoll] - 200.0 * f.gimbal_rate_rad_s[msg::kAxis2]);
+                       p.k2 * f.gimbal_angle_rad[msg::kAxis1] - p.d2 * f.gimbal_rate_rad_s[msg::kAxis2]);
       ASSERT_EQ(out.sensor_tick, k);
     } else {
       ASSERT_EQ(out.gimbal_torque_Nm[msg::kAxis2], torque_at_last_control) << "held between control runs";
@@ -358,24 +406,29 @@ TEST(ControllerRuntime, FastBaseTickRunsTheLawEveryTenthTickAndTheDriveEveryTick
 }
 
 TEST(ControllerRuntime, TheCurrentLoopTurnsTheTorqueIntoAVoltageOfTheSameSign) {
-  // Monorail at a constant tilt: M2 = k φ > 0. The current loop drives i toward M2/k_t with the measured
-  // current held at 0 (an open winding): the voltage rises and saturates at +voltage_limit.
-  MonorailConfig cfg{};
+  // Power stabilizer with only axis 1's gimbal deflected: M2 = k2 α > 0, M1 = −d1 α' = 0. The current loop
+  // drives i toward M2/k_t with the measured current held at 0 (an open winding): the voltage rises and
+  // saturates at +voltage_limit; axis 1's loop has nothing to do.
+  PowerStabilizerControllerConfig cfg{};
   cfg.drive.enabled = true;
-  cfg.drive.axis[msg::kAxis2].bandwidth_rad_s = 200.0;  // ω_c T = 0.2 at 1 ms
-  MonorailController ctl(cfg);
+  for (TorqueCurrentLoopParams& d : cfg.drive.axis) d.bandwidth_rad_s = 200.0;  // ω_c T = 0.2 at 1 ms
+  ASSERT_TRUE(PowerStabilizerController::check(cfg).ok) << PowerStabilizerController::check(cfg).reason;
+  PowerStabilizerController ctl(cfg);
   ActuatorFrame out{};
   for (std::uint64_t k = 0; k < 200; ++k) {
-    SensorFrame f = good_frame(k);
-    f.carrier_angle_rad[msg::kRoll] = 0.05;
-    f.gimbal_rate_rad_s[msg::kAxis2] = 0.0;
-    f.motor_current_A[msg::kAxis2] = 0.0;
+    SensorFrame f{};
+    f.tick = k;
+    f.time_ns = static_cast<std::int64_t>(k) * kTickNs;
+    f.sequence = static_cast<std::uint32_t>(k);
+    f.gimbal_angle_rad[msg::kAxis1] = 0.05;
+    f.rotor_speed_rad_s = 500.0;
     ctl.step(k, &f, out);
   }
   EXPECT_GT(out.gimbal_torque_Nm[msg::kAxis2], 0.0);
+  EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis1], 0.0);
   EXPECT_EQ(out.motor_voltage_V[msg::kAxis2], cfg.drive.axis[msg::kAxis2].voltage_limit_V);
   EXPECT_TRUE((out.status & bit(LawStatusBit::kDriveVoltageSaturated)) != 0u);
-  EXPECT_EQ(out.motor_voltage_V[msg::kAxis1], 0.0) << "only the device's axis is driven";
+  EXPECT_EQ(out.motor_voltage_V[msg::kAxis1], 0.0) << "no torque demanded on axis 1";
 }
 
 TEST(ControllerRuntime, ActiveShipBeyondTheSoftLimitReportsItAndBrakesTowardTheStop) {

@@ -90,70 +90,11 @@ bool is_safe_command(const ActuatorFrame& c) {
          c.cluster_rate_command_rad_s[3] == 0.0 && msg::has(c.status, FaultBit::kSafeState);
 }
 
-// Writes `value` into one signal of a frame (the test's own map, independent of for_each_signal).
-void set_signal(SensorFrame& f, SensorSignal s, double value) {
-  switch (s) {
-    case SensorSignal::kCarrierAngleRoll:
-      f.carrier_angle_rad[0] = value;
-      break;
-    case SensorSignal::kCarrierAnglePitch:
-      f.carrier_angle_rad[1] = value;
-      break;
-    case SensorSignal::kCarrierAngleYaw:
-      f.carrier_angle_rad[2] = value;
-      break;
-    case SensorSignal::kCarrierRateRoll:
-      f.carrier_rate_rad_s[0] = value;
-      break;
-    case SensorSignal::kCarrierRatePitch:
-      f.carrier_rate_rad_s[1] = value;
-      break;
-    case SensorSignal::kCarrierRateYaw:
-      f.carrier_rate_rad_s[2] = value;
-      break;
-    case SensorSignal::kGimbalAngle1:
-      f.gimbal_angle_rad[0] = value;
-      break;
-    case SensorSignal::kGimbalAngle2:
-      f.gimbal_angle_rad[1] = value;
-      break;
-    case SensorSignal::kGimbalRate1:
-      f.gimbal_rate_rad_s[0] = value;
-      break;
-    case SensorSignal::kGimbalRate2:
-      f.gimbal_rate_rad_s[1] = value;
-      break;
-    case SensorSignal::kMotorCurrent1:
-      f.motor_current_A[0] = value;
-      break;
-    case SensorSignal::kMotorCurrent2:
-      f.motor_current_A[1] = value;
-      break;
-    case SensorSignal::kRotorSpeed:
-      f.rotor_speed_rad_s = value;
-      break;
-    case SensorSignal::kEncoderCount1:
-      f.encoder_count[0] = static_cast<std::int32_t>(value);
-      break;
-    case SensorSignal::kEncoderCount2:
-      f.encoder_count[1] = static_cast<std::int32_t>(value);
-      break;
-    case SensorSignal::kClusterAngle1:
-    case SensorSignal::kClusterAngle2:
-    case SensorSignal::kClusterAngle3:
-    case SensorSignal::kClusterAngle4:
-      f.cluster_gimbal_angle_rad[static_cast<int>(s) - static_cast<int>(SensorSignal::kClusterAngle1)] = value;
-      break;
-    case SensorSignal::kClusterRate1:
-    case SensorSignal::kClusterRate2:
-    case SensorSignal::kClusterRate3:
-    case SensorSignal::kClusterRate4:
-      f.cluster_gimbal_rate_rad_s[static_cast<int>(s) - static_cast<int>(SensorSignal::kClusterRate1)] = value;
-      break;
-    case SensorSignal::kNone:
-      break;
-  }
+// Writes `value` into value i of a frame (frame order, as the signal table lists them).
+void set_signal(SensorFrame& f, std::size_t i, double value) {
+  msg::set_signal_value(f, i, value);
 }
+constexpr std::size_t kSensorSignalCount = msg::SensorIndex::count;
 
 // Ranges every good_frame() satisfies, narrow enough that each signal has a finite bound to break
 // (encoder counts included).
@@ -403,8 +344,8 @@ TEST(FaultMonitor, SafeStateReasonIsEveryCauseOfTheBadRun) {
   const TickResult r = tick(m, &nan, 11);
   EXPECT_EQ(r.command.status, bit(FaultBit::kSafeState) | bit(FaultBit::kSensorMissing) |
                                   bit(FaultBit::kSensorNonFinite) | bit(FaultBit::kSensorOutOfRange));
-  EXPECT_EQ(m.counters().last_non_finite_signal, SensorSignal::kMotorCurrent1);
-  EXPECT_EQ(m.counters().last_out_of_range_signal, SensorSignal::kRotorSpeed);
+  EXPECT_EQ(m.counters().last_non_finite_signal, msg::SensorIndex::motor_current_A + msg::kAxis1);
+  EXPECT_EQ(m.counters().last_out_of_range_signal, msg::SensorIndex::rotor_speed_rad_s);
   // Later causes are counted but do not change the latched reason.
   SensorFrame stale = good_frame(12);
   stale.sequence = nan.sequence;
@@ -417,13 +358,10 @@ TEST(FaultMonitor, SafeStateReasonIsEveryCauseOfTheBadRun) {
 TEST(FaultMonitor, EverySignalIsCheckedForRangeAndBoundsAreInclusive) {
   const FaultMonitorConfig config = narrow_config();
   for (std::size_t i = 0; i < kSensorSignalCount; ++i) {
-    const auto id = static_cast<SensorSignal>(i);
+    const auto id = static_cast<std::uint8_t>(i);
     SCOPED_TRACE(i);
     // The bound itself is in range.
-    Range range{};
-    for_each_signal(SensorFrame{}, config.ranges, [&](SensorSignal s, double, const Range& r) {
-      if (s == id) range = r;
-    });
+    const Range range = range_at(config.ranges, i);
     FaultMonitor m{config};
     tick_good(m, 0);
     SensorFrame at_bound = good_frame(1);
@@ -449,10 +387,9 @@ TEST(FaultMonitor, EverySignalIsCheckedForRangeAndBoundsAreInclusive) {
   }
 }
 
-TEST(FaultMonitor, EveryFloatingSignalIsCheckedForNaN) {
+TEST(FaultMonitor, EverySignalIsCheckedForNaN) {
   for (std::size_t i = 0; i < kSensorSignalCount; ++i) {
-    const auto id = static_cast<SensorSignal>(i);
-    if (id == SensorSignal::kEncoderCount1 || id == SensorSignal::kEncoderCount2) continue;  // integers
+    const auto id = static_cast<std::uint8_t>(i);
     SCOPED_TRACE(i);
     FaultMonitor m{narrow_config()};
     tick_good(m, 0);

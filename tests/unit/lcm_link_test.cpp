@@ -125,14 +125,14 @@ struct Ends {
 
 TEST(FrameEndpoint, CountsCodecRejectionsAndPassesGoodFrames) {
   Ends e;
-  std::uint8_t buf[256];
+  std::uint8_t buf[hil::kMaxEncodedSize];
   const int n = hil::encode(msg::any_of(command(5)), msg::kSignals, 0, buf, sizeof buf, hil::LinkEnvelope{kControllerId, kSession, 1, 0});
   e.bus->to_plant.push(buf, n - 1);  // short
   buf[0] ^= 1;
   e.bus->to_plant.push(buf, n);  // fingerprint
   buf[0] ^= 1;
   msg::SensorFrame s{};
-  std::uint8_t sbuf[256];
+  std::uint8_t sbuf[hil::kMaxEncodedSize];
   e.bus->to_plant.push(sbuf, hil::encode(msg::any_of(s), msg::kSignals, 0, sbuf, sizeof sbuf));  // another type: its size differs
   e.bus->to_plant.push(buf, n);                                      // good
   msg::ActuatorFrame got{};

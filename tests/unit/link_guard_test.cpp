@@ -116,7 +116,7 @@ TEST(LinkGuard, ARecordedFrameIsRefused) {
   p.handshake();
   // What a bus log holds (tools/log/bus_log_writer.cpp encodes with the empty envelope: session 0), as
   // lcm-logplayer would put it on the bus.
-  std::uint8_t buf[256];
+  std::uint8_t buf[hil::kMaxEncodedSize];
   const int n = hil::encode(msg::any_of(command(1, 9.0)), msg::kSignals, 0, buf, sizeof buf);
   p.bus->to_plant.push(buf, n);
   msg::ActuatorFrame a{};
@@ -128,7 +128,7 @@ TEST(LinkGuard, SenderZeroIsNobodyAndCannotBeBoundTo) {
   Pair p;
   // Found by link_guard_fuzz: a handshake command from sender 0 bound the plant to "nobody", which left it
   // open to every sender of the session.
-  std::uint8_t buf[256];
+  std::uint8_t buf[hil::kMaxEncodedSize];
   const int n = hil::encode(msg::any_of(command(0, 7.0)), msg::kSignals, 0, buf, sizeof buf, hil::LinkEnvelope{0, kSession, 1, 0});
   p.bus->to_plant.push(buf, n);
   msg::ActuatorFrame a{};

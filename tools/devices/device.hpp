@@ -39,8 +39,11 @@ class DeviceScene {
   virtual ~DeviceScene() = default;
 
   virtual const LoopConfig& loop() const = 0;
-  // The CSV columns the plant writes (Recorder; [output] signals picks from them).
+  // The CSV columns this scene records ([output] signals picks from them).
   virtual std::vector<std::string> columns() const = 0;
+  // The columns of the row the plant writes (PlantPort::record), in order: columns() plus those of the
+  // device's table that this scene does not have (a column `when` an option the scene does not take).
+  virtual std::vector<std::string> row_columns() const { return columns(); }
   // The command limits a drive of this scene accepts (the plant side's check of every received frame).
   virtual hil::ActuatorLimits actuator_limits() const { return hil::ActuatorLimits{}; }
   // report.json "limits": the scene's physical limits in SI units, for the plot (tools/plot/LIMITS.md).

@@ -3,18 +3,24 @@
 // traits' own make_plant, for a plant with variants), the controller as ControllerPortOf<Controller> on the
 // scene's `controller` configuration. The traits:
 //   using Scene = ...;  using Binding = ...;  using Controller = ...;
-//   static std::vector<std::string> columns(const Scene&);               // the CSV columns
+//   the CSV columns: the binding's Record (its signal table's columns, gyrostab_signals/<device>_outputs.hpp),
+//     with (optional) static bool column_option(const Scene&, std::string_view when) for columns that exist
+//     only with an option; or, for a device still on the legacy frame,
+//   static std::vector<std::string> columns(const Scene&);
 //   (optional) static nlohmann::json limits(const Scene&);               // report.json "limits"
 //   (optional) static hil::ActuatorLimits actuator_limits(const Scene&); // what a drive accepts
 //   (optional) static std::unique_ptr<PlantPort> make_plant(const Scene&, const PlantOptions&);
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "tools/devices/device.hpp"
+#include "tools/signals/output_spec.hpp"
 
 namespace gyrostab::tools {
 
@@ -26,7 +32,26 @@ class DeviceSceneOf final : public DeviceScene {
   explicit DeviceSceneOf(std::unique_ptr<Scene> s) : s_(std::move(s)) {}
 
   const LoopConfig& loop() const override { return s_->loop; }
-  std::vector<std::string> columns() const override { return Traits::columns(*s_); }
+  std::vector<std::string> columns() const override {
+    if constexpr (requires { typename Traits::Binding::Record; }) {
+      std::vector<std::string> c;
+      for (const ColumnSpec& spec : table_columns()) {
+        if (spec.when.empty() || column_option(spec.when)) c.emplace_back(spec.name);
+      }
+      return c;
+    } else {
+      return Traits::columns(*s_);
+    }
+  }
+  std::vector<std::string> row_columns() const override {
+    if constexpr (requires { typename Traits::Binding::Record; }) {
+      std::vector<std::string> c;
+      for (const ColumnSpec& spec : table_columns()) c.emplace_back(spec.name);
+      return c;
+    } else {
+      return Traits::columns(*s_);
+    }
+  }
   hil::ActuatorLimits actuator_limits() const override {
     if constexpr (requires(const Scene& s) { Traits::actuator_limits(s); }) {
       return Traits::actuator_limits(*s_);
@@ -61,6 +86,19 @@ class DeviceSceneOf final : public DeviceScene {
   }
 
  private:
+  static constexpr std::span<const ColumnSpec> table_columns()
+    requires requires { typename Traits::Binding::Record; }
+  {
+    return device_outputs(static_cast<const typename Traits::Binding::Record*>(nullptr)).columns;
+  }
+  bool column_option(std::string_view when) const {
+    if constexpr (requires(const Scene& s) { Traits::column_option(s, when); }) {
+      return Traits::column_option(*s_, when);
+    } else {
+      return false;
+    }
+  }
+
   std::unique_ptr<Scene> s_;
 };
 

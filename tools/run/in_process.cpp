@@ -35,6 +35,11 @@ bool signals_ok(const DeviceScene& scene, const RunRequest& req) {
   return false;
 }
 
+Recorder scene_recorder(const DeviceScene& scene, std::int64_t ticks) {
+  const LoopConfig& loop = scene.loop();
+  return Recorder(scene.row_columns(), ticks, loop.record_every, loop.signals.empty() ? scene.columns() : loop.signals);
+}
+
 int run_device_scene(const DeviceScene& scene, const RunRequest& req) {
   switch (req.role) {
     case Role::kInProcess: return run_in_process(scene, req);
@@ -51,7 +56,7 @@ int run_in_process(const DeviceScene& scene, const RunRequest& req) {
   if (!signals_ok(scene, req)) return 2;
   std::unique_ptr<PlantPort> plant = scene.make_plant(PlantOptions{true, req.ticks});
   std::unique_ptr<ControllerPort> controller = scene.make_controller();
-  Recorder rec(scene.columns(), req.ticks >= 0 ? req.ticks : loop.ticks(), loop.record_every, loop.signals);
+  Recorder rec = scene_recorder(scene, req.ticks >= 0 ? req.ticks : loop.ticks());
   LoopConfig run_loop = loop;
   if (req.ticks >= 0) run_loop.duration_s = static_cast<double>(req.ticks) * run_loop.tick_s();
 

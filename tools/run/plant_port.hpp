@@ -11,7 +11,8 @@
 //   void actuate(const ActuatorFrame& cmd);                 // the command held over [k, k + 1)
 //   void advance(std::int64_t tick);                        // integrate [k, k + 1) and feed the meters
 //   bool finite() const;
-//   void record(double* row) const;                         // the scene's columns, in order
+//   using Record = ...; void record(Record& row) const;     // one CSV row: the signal table's columns by name
+//                                                           // (a legacy binding: void record(double* row))
 //   (optional) nlohmann::json figures() const;              // report.json "figures"
 //   (optional) kGuardedStates, state_name(i), state_value(i)   tools/run/state_guard.hpp
 //   (optional) nlohmann::json report_extra() const;         // blocks beside "figures" ("plant", "drift", ...)
@@ -22,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <utility>
@@ -88,7 +90,15 @@ class PlantPortOf final : public PlantPort {
     where = guard_.locate(b_);
     return false;
   }
-  void record(double* row) const override { b_.record(row); }
+  void record(double* row) const override {
+    if constexpr (requires { typename Binding::Record; }) {
+      typename Binding::Record r{};
+      b_.record(r);
+      std::memcpy(row, &r, sizeof r);
+    } else {
+      b_.record(row);
+    }
+  }
   msg::AnyActuatorFrame initial_command() const override {
     msg::AnyActuatorFrame out{};
     if constexpr (requires(const Binding& b) { b.initial_command(); }) {

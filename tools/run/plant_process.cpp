@@ -225,7 +225,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   if (!signals_ok(scene, req)) return 2;
   std::unique_ptr<PlantPort> plant = scene.make_plant(PlantOptions{false, req.ticks});
   const hil::ActuatorLimits limits = scene.actuator_limits();
-  Recorder rec(scene.columns(), req.ticks >= 0 ? req.ticks : loop.ticks(), loop.record_every, loop.signals);
+  Recorder rec = scene_recorder(scene, req.ticks >= 0 ? req.ticks : loop.ticks());
   const LinkSettings s = link_settings(run_loop, req.transport);
   hil::FrameEndpoint<Transport> ep(transport, hil::plant_guard(guard.session, guard.key), signals_of(scene));
   if (req.transport.loss > 0) ep.inject_loss(req.transport.loss, loop.seed, 1);

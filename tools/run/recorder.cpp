@@ -46,7 +46,7 @@ Recorder::Recorder(std::vector<std::string> columns, std::int64_t ticks, int eve
                    const std::vector<std::string>& selection)
     : every_(every < 1 ? 1 : every), next_due_(every_) {
   columns_.push_back("t_s");
-  if (selection.empty()) {
+  if (selection.empty() || selection == columns) {  // every column, in order: no scratch row
     for (auto& c : columns) columns_.push_back(std::move(c));
   } else {
     // Names were checked (check_signals); an unknown one here is skipped rather than recorded wrong.

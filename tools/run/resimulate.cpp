@@ -32,7 +32,7 @@ int resimulate_plant(const DeviceScene& scene, const RunRequest& req) {
   int exit_code = 0;
   if (!session.open(loop, req, exit_code)) return exit_code;
   std::unique_ptr<PlantPort> device = scene.make_plant(PlantOptions{false, req.ticks});
-  Recorder rec(scene.columns(), loop.ticks(), loop.record_every);
+  Recorder rec = scene_recorder(scene, loop.ticks());
   PlantTick plant(*device, loop, &rec);
   msg::AnySensorFrame sensed{};
   buslog::TickRecord t;

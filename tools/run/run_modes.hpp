@@ -13,6 +13,7 @@
 
 #include "tools/devices/device.hpp"
 #include "tools/run/loop_outcome.hpp"
+#include "tools/run/recorder.hpp"
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {
@@ -32,5 +33,9 @@ nlohmann::json plant_report(const DeviceScene& scene, const PlantPort& plant, co
 
 // [output] signals checked against the scene's columns; false (message printed) when refused.
 bool signals_ok(const DeviceScene& scene, const RunRequest& req);
+
+// The recorder of a run of `ticks` ticks: the plant's rows (row_columns), keeping the scene's [output] signals
+// or, without them, the columns the scene has.
+Recorder scene_recorder(const DeviceScene& scene, std::int64_t ticks);
 
 }  // namespace gyrostab::tools

@@ -85,13 +85,41 @@ def encoded_size(t: Table, direction: str) -> int:
 
 # --- C++ ---------------------------------------------------------------------------------------------------
 
-def _frame_struct(name: str, header, signals: list[Signal], what: str) -> list[str]:
-    out = [f"// {what}", f"struct {name} {{"]
+def _frame_struct(name: str, header, signals: list[Signal], what: str, extra: list[str]) -> list[str]:
+    out = [f"// {what}", f"struct {name} {{"] + extra
     for field, ctype, _, doc, unit in header:
         out.append(f"  {ctype} {field}{{0}};  // {doc} [{unit}]")
     for s in signals:
         dims = f"[{s.count}]" if s.count > 1 else ""
         out.append(f"  double {s.name}{dims}{{}};  // {s.symbol}: {s.description.splitlines()[0]} [{s.unit}]")
+    out.append("};")
+    return out
+
+
+def _ranges_struct(signals: list[Signal]) -> list[str]:
+    out = ["// The fault monitor's plausible range of every sensor value, the table's ranges by default (a scene",
+           "// narrows them; firmware/fault/fault_monitor.hpp walks them as one Range per value, in frame order).",
+           "struct SensorRanges {"]
+    for s in signals:
+        r = f"{{{num(s.lo)}, {num(s.hi)}}}"
+        if s.count > 1:
+            out.append(f"  Range {s.name}[{s.count}]{{{', '.join([r] * s.count)}}};  // [{s.unit}]")
+        else:
+            out.append(f"  Range {s.name}{r};  // [{s.unit}]")
+    if not signals:
+        out.append("  Range none_[1]{};  // no sensor values")
+    out.append("};")
+    return out
+
+
+def _index_struct(name: str, signals: list[Signal], what: str) -> list[str]:
+    out = [f"// {what}: the index of each value in frame order (an array's first element), for code that walks",
+           "// the values (signal_value, set_signal_value: firmware/msg/any_frame.hpp).", f"struct {name} {{"]
+    i = 0
+    for s in signals:
+        out.append(f"  static constexpr std::size_t {s.name} = {i};")
+        i += s.count
+    out.append(f"  static constexpr std::size_t count = {i};")
     out.append("};")
     return out
 
@@ -128,11 +156,18 @@ def frames_header(t: Table) -> str:
         f"inline constexpr std::string_view kDevice = {cstr(t.device)};",
         "",
     ]
+    lines += _ranges_struct(t.sensors)
+    lines.append("")
+    lines += _index_struct("SensorIndex", t.sensors, "Sensor values")
+    lines += _index_struct("CommandIndex", t.commands, "Command values")
+    lines.append("")
     lines += _frame_struct("SensorFrame", SENSOR_HEADER, t.sensors,
-                           "Plant -> controller, once per controller tick: the fixed header, then the signals.")
+                           "Plant -> controller, once per controller tick: the fixed header, then the signals.",
+                           ["  using Ranges = SensorRanges;", "  using Index = SensorIndex;"])
     lines.append("")
     lines += _frame_struct("ActuatorFrame", ACTUATOR_HEADER, t.commands,
-                           "Controller -> plant, once per controller tick: the fixed header, then the commands.")
+                           "Controller -> plant, once per controller tick: the fixed header, then the commands.",
+                           ["  using Index = CommandIndex;"])
     lines.append("")
     lines += _specs("kSensorSignals", t.sensors)
     lines += _specs("kCommandSignals", t.commands)
@@ -154,6 +189,7 @@ def frames_header(t: Table) -> str:
         f"static_assert(sizeof(SensorFrame) == kFrameHeaderBytes + {n_s} * sizeof(double), \"no padding\");",
         f"static_assert(sizeof(ActuatorFrame) == kFrameHeaderBytes + {n_c} * sizeof(double), \"no padding\");",
         f"static_assert({n_s} <= kMaxSensorSignals && {n_c} <= kMaxCommandSignals);",
+        f"static_assert(sizeof(SensorRanges) == {max(n_s, 1)} * sizeof(Range), \"one Range per sensor value\");",
         "",
         f"}}  // namespace {ns}",
         "",
@@ -196,6 +232,8 @@ def outputs_header(t: Table) -> str:
         lines.append("inline constexpr std::span<const tools::FigureSpec> kFigures{};")
     lines += [
         "inline constexpr tools::DeviceOutputs kOutputs{kColumns, kFigures};",
+        "// ADL hook: the outputs of a Record (tools/devices/device_scene_of.hpp).",
+        "constexpr const tools::DeviceOutputs& device_outputs(const Record*) { return kOutputs; }",
         f"static_assert(sizeof(Record) == {len(t.columns)} * sizeof(double));",
         "",
         f"}}  // namespace {ns}",

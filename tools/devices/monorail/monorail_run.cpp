@@ -19,6 +19,7 @@
 #include "sim/analysis/running_stats.hpp"
 #include "sim/analysis/window_mean.hpp"
 #include "tools/devices/monorail/monorail_curve.hpp"
+#include "gyrostab_signals/monorail_outputs.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/monorail/monorail_sampled.hpp"
 #include "tools/devices/monorail/monorail_scene.hpp"
@@ -30,13 +31,6 @@ namespace {
 using Plant = plants::MonorailPlant;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
 using Controller = firmware::BasicMonorailController<firmware::posix::MonotonicClock>;
-
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{
-      "tilt_rad",       "case_angle_rad",        "tilt_rate_rad_s", "case_rate_rad_s", "Omega3_rad_s",
-      "gust_moment_Nm", "centrifugal_moment_Nm", "motor_torque_Nm", "status_bits"};
-  return c;
-}
 
 nlohmann::json json_of(const std::optional<double>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json();
@@ -59,6 +53,10 @@ LeanWindow plateau_window(double plateau_from, double plateau_to, double duratio
 
 class MonorailRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::monorail::Record;
+
   explicit MonorailRun(const MonorailScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -78,15 +76,15 @@ class MonorailRun {
     set_window(curve_window_, curve_tilt_, curve_case_);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     plant_.sense(tick, f);
     // What the frame got wrong (noise, encoder counts): the loop's inputs for the release's fit.
-    sensor_error_[0] = f.carrier_angle_rad[msg::kRoll] - plant_.tilt_rad();
-    sensor_error_[1] = f.carrier_rate_rad_s[msg::kRoll] - plant_.tilt_rate_rad_s();
-    sensor_error_[2] = f.gimbal_angle_rad[msg::kAxis2] - plant_.case_angle_rad();
-    sensor_error_[3] = f.gimbal_rate_rad_s[msg::kAxis2] - plant_.case_rate_rad_s();
+    sensor_error_[0] = f.tilt_rad - plant_.tilt_rad();
+    sensor_error_[1] = f.tilt_rate_rad_s - plant_.tilt_rate_rad_s();
+    sensor_error_[2] = f.case_angle_rad - plant_.case_angle_rad();
+    sensor_error_[3] = f.case_rate_rad_s - plant_.case_rate_rad_s();
   }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -114,18 +112,18 @@ class MonorailRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
+  void record(Record& r) const {
     const double t =
         1e-9 * static_cast<double>((static_cast<std::int64_t>(last_.tick) + 1) * s_.loop.tick_ns);
-    row[0] = plant_.tilt_rad();
-    row[1] = plant_.case_angle_rad();
-    row[2] = plant_.tilt_rate_rad_s();
-    row[3] = plant_.case_rate_rad_s();
-    row[4] = plant_.Omega3_rad_s(t);
-    row[5] = plant_.gust_moment_Nm(t);
-    row[6] = plant_.centrifugal_moment_Nm(t);
-    row[7] = last_.gimbal_torque_Nm[msg::kAxis2];
-    row[8] = static_cast<double>(last_.status);
+    r.tilt_rad = plant_.tilt_rad();
+    r.case_angle_rad = plant_.case_angle_rad();
+    r.tilt_rate_rad_s = plant_.tilt_rate_rad_s();
+    r.case_rate_rad_s = plant_.case_rate_rad_s();
+    r.Omega3_rad_s = plant_.Omega3_rad_s(t);
+    r.gust_moment_Nm = plant_.gust_moment_Nm(t);
+    r.centrifugal_moment_Nm = plant_.centrifugal_moment_Nm(t);
+    r.motor_torque_Nm = last_.motor_torque_Nm;
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -285,7 +283,7 @@ class MonorailRun {
   std::int64_t settle_tick_;
   LeanWindow gust_window_, curve_window_;
   analysis::WindowMean gust_tilt_, gust_case_, curve_tilt_, curve_case_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   analysis::RunningStats tilt_;
   double case_peak_{0.0}, torque_peak_{0.0};
   std::int64_t overturned_tick_{-1};
@@ -300,10 +298,11 @@ struct MonorailTraits {
   using Scene = MonorailScene;
   using Binding = MonorailRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
-  // The law's torque limit on both axes; no voltage limit (a torque-mode drive: the voltages are unused).
+  // The law's torque limit on the case motor.
   static hil::ActuatorLimits actuator_limits(const Scene& s) {
-    return hil::ActuatorLimits::torque_limited(s.controller.law.torque_limit_Nm);
+    msg::monorail::ActuatorFrame l = hil::ActuatorLimits::unlimited<msg::monorail::ActuatorFrame>();
+    l.motor_torque_Nm = s.controller.law.torque_limit_Nm;
+    return hil::ActuatorLimits::of(l);
   }
   // The car lies on the ground at |φ| = π/2 (sim/plants/car_on_track.hpp); the case has no end stops.
   static nlohmann::json limits(const Scene& s) {

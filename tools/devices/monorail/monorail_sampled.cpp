@@ -35,11 +35,11 @@ analysis::DiscreteLaw monorail_probed_law(const firmware::MonorailConfig& c) {
   const firmware::MonorailLaw law(lifted);
   Eigen::MatrixXd D = Eigen::MatrixXd::Zero(1, 2);
   for (int j = 0; j < 2; ++j) {
-    msg::SensorFrame in{};
-    (j == 0 ? in.carrier_angle_rad[msg::kRoll] : in.gimbal_rate_rad_s[msg::kAxis2]) = 1.0;
-    msg::ActuatorFrame out{};
+    firmware::MonorailLaw::SensorFrame in{};
+    (j == 0 ? in.tilt_rad : in.case_rate_rad_s) = 1.0;
+    firmware::MonorailLaw::ActuatorFrame out{};
     law.control(in, out);
-    D(0, j) = out.gimbal_torque_Nm[msg::kAxis2];
+    D(0, j) = out.motor_torque_Nm;
   }
   return analysis::DiscreteLaw::gain(D);
 }
