@@ -13,6 +13,7 @@
 #include "tools/run/recorder.hpp"
 #include "tools/run/run_mcap.hpp"
 #include "tools/run/run_modes.hpp"
+#include "tools/scene/scene_hash.hpp"
 #include "tools/view/run_view.hpp"
 
 namespace gyrostab::tools {
@@ -120,7 +121,8 @@ int run_scene(const RunRequest& req) {
     }
   }
   if (req.check_only) {
-    std::printf("%s: ok\n", req.scene_path.c_str());
+    // The scene's identity, as the handshake carries it and a log records it (docs/protocol.md).
+    std::printf("%s: ok (scene hash %s)\n", req.scene_path.c_str(), format_scene_hash(loop.scene_hash).c_str());
     return 0;
   }
   // Before anything runs: a run that cannot write its outputs is refused now, not after simulating.

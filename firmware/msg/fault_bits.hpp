@@ -16,6 +16,12 @@ enum class SensorStatusBit : std::uint32_t {
   kEncoderError = 1u << 1,       // an encoder lost counts (index/quadrature error); counts unreliable
   kDriveFault = 1u << 2,         // a gimbal drive reports over-current, over-temperature or a bridge fault
   kRotorSpeedInvalid = 1u << 3,  // the spin-speed pick-off has no valid reading
+  // Not a sensor's: the plant's end-of-run frame (docs/protocol.md). A frame for the tick after the last, its
+  // signals zero; the controller does not step on it but acknowledges it and stops.
+  kEndOfRun = 1u << 31,
+  // With kEndOfRun: the plant ends the run because a second source sends as this controller (a hijack,
+  // hil/link/source_watch.hpp); the controller ends with the same verdict.
+  kSecondSource = 1u << 30,
 };
 
 // ActuatorFrame::status — set by the controller; the fault-monitor bits (0-15) say why it is holding or safe.
@@ -32,6 +38,9 @@ enum class FaultBit : std::uint32_t {
   kSafeState = 1u << 9,        // safe state: precession brake engaged, every drive at zero torque;
                                // the cause bits set alongside are the latched reason
   kAwaitingFirstFrame = 1u << 10,  // start-up: no good sensor frame yet; the command is the safe command
+  // Not the monitor's: the controller's acknowledgement of the plant's end-of-run frame (docs/protocol.md),
+  // in an actuator frame for that frame's tick, every command at its safe value.
+  kEndOfRun = 1u << 11,
 };
 
 // All cause bits (what can trip the safe state).

@@ -66,9 +66,10 @@ namespace gyrostab::hil {
 template <>
 class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
  public:
-  FrameEndpoint(can::CanBusTransport& bus, const GuardConfig& guard, const msg::DeviceSignals& /*signals*/)
+  FrameEndpoint(can::CanBusTransport& bus, const GuardConfig& guard, const msg::DeviceSignals& signals)
       : EndpointBook(can::can_guard_config(guard)),
         bus_(bus),
+        signals_(signals),
         sensor_tx_(can::Direction::kSensor, bus.nodes),
         actuator_tx_(can::Direction::kActuator, bus.nodes),
         sensor_rx_(can::Direction::kSensor, bus.nodes),
@@ -101,6 +102,8 @@ class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
   }
 
   // --loss (endpoint_book.hpp) draws once per set: a whole set is lost on the way.
+
+  const msg::DeviceSignals& signals() const { return signals_; }
 
   // Binds to the peer of the set last returned by receive() (the handshake).
   void bind_to_last() { guard_.bind(last_rx_); }
@@ -238,6 +241,7 @@ class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
   }
 
   can::CanBusTransport& bus_;
+  const msg::DeviceSignals& signals_;
   LinkEnvelope last_rx_{};
   can::FrameEncoder sensor_tx_, actuator_tx_;
   can::SetAssembler sensor_rx_, actuator_rx_;

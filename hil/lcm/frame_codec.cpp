@@ -57,6 +57,7 @@ int encode_frame(const Frame& f, std::uint64_t fingerprint, std::size_t n, std::
   w.u32(f.status);
   for (std::size_t i = 0; i < n; ++i) w.f64(f.signal[i]);
   w.u64(static_cast<std::uint64_t>(sim_time_us));
+  w.u64(e.scene);
   w.u64(e.sender);
   w.u64(e.session);
   w.u64(e.freshness);
@@ -82,6 +83,7 @@ DecodeError decode_frame(const void* data, int size, std::uint64_t fingerprint, 
   for (std::size_t i = 0; i < n; ++i) f.signal[i] = r.f64();
   const auto t = static_cast<std::int64_t>(r.u64());
   LinkEnvelope e;
+  e.scene = r.u64();
   e.sender = r.u64();
   e.session = r.u64();
   e.freshness = r.u64();

@@ -5,7 +5,7 @@
 // Wire layout (LCM marshalling of those types): the 8-byte big-endian type fingerprint; the header (tick,
 // time_ns, sample_time_ns or sensor_tick as int64; sequence, status as int32); the device's signals as 64-bit
 // IEEE-754 doubles, big-endian, in table order (an array element by element); sim_time_us; the link's envelope
-// (sender, session, freshness, mac as int64). Doubles travel as their bit patterns, so every value — NaN
+// (sender, session, freshness, mac as int64), preceded by the sender's scene hash (`scene`). Doubles travel as their bit patterns, so every value — NaN
 // payloads and signed zeros included — survives a round trip bit for bit; the receiver, not the codec, decides
 // what is acceptable (hil/link/actuator_frame_check.hpp, the fault monitor). Unsigned header fields travel as
 // the signed LCM type of the same width, modulo 2^n. tests/unit/lcm_codec_test.cpp checks the bytes against
@@ -23,8 +23,9 @@
 namespace gyrostab::hil {
 
 inline constexpr int kEnvelopeEncodedSize = 4 * 8;  // sender .. mac
-// Fingerprint, header, sim_time_us and envelope: what every frame carries besides its signals.
-inline constexpr int kFixedEncodedSize = 8 + 3 * 8 + 2 * 4 + 8 + kEnvelopeEncodedSize;  // 80
+// Fingerprint, header, sim_time_us, the scene hash and the envelope: what every frame carries besides its
+// signals.
+inline constexpr int kFixedEncodedSize = 8 + 3 * 8 + 2 * 4 + 8 + 8 + kEnvelopeEncodedSize;  // 88
 constexpr int encoded_size(std::size_t signals) { return kFixedEncodedSize + 8 * static_cast<int>(signals); }
 inline int sensor_encoded_size(const msg::DeviceSignals& d) { return encoded_size(d.sensors.size()); }
 inline int actuator_encoded_size(const msg::DeviceSignals& d) { return encoded_size(d.commands.size()); }

@@ -22,14 +22,18 @@
 
 namespace gyrostab::hil {
 
-// The guard of each end (data ids: hil/lcm/frame_codec.hpp). The plant's session is its own id; the controller
-// has its own id and the session it was given, or 0 to bind at the handshake.
-inline GuardConfig plant_guard(std::uint64_t session, const std::optional<firmware::link::Key128>& key) {
-  return GuardConfig{session, session, key, kSensorDataId, kActuatorDataId};
+// The guard of each end (data ids: hil/lcm/frame_codec.hpp). The plant's session is its own id, and it knows
+// its controller's id when whoever started both said it (`run --transport`: 0 binds at the handshake); the
+// controller has its own id and the session it was given (the plant's id, so its peer too), or 0 to bind at the
+// handshake. `scene`: this end's scene hash, checked against the peer's (0: unchecked).
+inline GuardConfig plant_guard(std::uint64_t session, const std::optional<firmware::link::Key128>& key,
+                               std::uint64_t scene = 0, std::uint64_t controller_id = 0) {
+  GuardConfig g{session, session, scene, controller_id, key, kSensorDataId, kActuatorDataId};
+  return g;
 }
 inline GuardConfig controller_guard(std::uint64_t own_id, std::uint64_t session,
-                                    const std::optional<firmware::link::Key128>& key) {
-  return GuardConfig{own_id, session, key, kActuatorDataId, kSensorDataId};
+                                    const std::optional<firmware::link::Key128>& key, std::uint64_t scene = 0) {
+  return GuardConfig{own_id, session, scene, session, key, kActuatorDataId, kSensorDataId};
 }
 
 template <class Transport>
@@ -76,11 +80,13 @@ class FrameEndpoint : public EndpointBook {
   void bind_to_last() { guard_.bind(last_rx_); }
   // The envelope of the frame last returned by receive().
   const LinkEnvelope& last_envelope() const { return last_rx_; }
+  // The device whose frames this endpoint carries.
+  const msg::DeviceSignals& signals() const { return signals_; }
 
  private:
   template <class Frame>
   bool send_any(const Frame& f, std::int64_t sim_time_us) {
-    last_size_ = encode(f, signals_, sim_time_us, tx_.data(), static_cast<int>(tx_.size()));
+    last_size_ = encode(f, signals_, sim_time_us, tx_.data(), static_cast<int>(tx_.size()), guard_.header());
     if (last_size_ < 0) {
       ++counters_.send_errors;
       return false;

@@ -38,6 +38,7 @@ struct LinkEnvelope {
   std::uint64_t session{0};    // the plant's session id; 0: a recorded frame
   std::uint64_t freshness{0};  // the sender's frame counter in this direction (full 64 bits or truncated)
   std::uint64_t mac{0};        // truncated MAC; 0 without a key
+  std::uint64_t scene{0};      // the sender's scene hash (tools/scene/scene_hash.hpp); covered by the MAC
 };
 
 enum class GuardVerdict : std::uint8_t {
@@ -46,6 +47,7 @@ enum class GuardVerdict : std::uint8_t {
   kForeign,   // another session, or another sender on this session
   kBadMac,    // with a key: the MAC does not verify (a forgery, or a frame of another key)
   kReplayed,  // with a key: the freshness value is not newer than the last accepted one (or too far ahead)
+  kOtherScene,  // this session's peer, or a would-be peer, runs another scene (its scene hash differs)
 };
 
 struct GuardCounters {
@@ -53,7 +55,9 @@ struct GuardCounters {
   std::uint64_t foreign{0};
   std::uint64_t bad_mac{0};
   std::uint64_t replayed{0};
-  std::uint64_t rejected() const { return recorded + foreign + bad_mac + replayed; }
+  std::uint64_t other_scene{0};
+  std::uint64_t last_other_scene{0};  // the scene hash of the latest frame refused as another scene's
+  std::uint64_t rejected() const { return recorded + foreign + bad_mac + replayed + other_scene; }
 };
 
 // What one end of a link is: its own id, the session it belongs to (0: not bound yet), the key if any, and
@@ -62,6 +66,8 @@ struct GuardCounters {
 struct GuardConfig {
   std::uint64_t own_sender{0};
   std::uint64_t session{0};
+  std::uint64_t scene{0};  // this end's scene hash, sent in every frame; a peer's must equal it (0: not checked)
+  std::uint64_t peer{0};   // the peer's sender id when known before the handshake (0: bind at the handshake)
   std::optional<firmware::link::Key128> key;
   std::uint32_t tx_data_id{0};
   std::uint32_t rx_data_id{0};
@@ -73,16 +79,17 @@ class LinkGuard {
   LinkGuard() = default;
   explicit LinkGuard(const GuardConfig& c)
       : c_(c),
+        peer_(c.peer),
         sender_(c.key ? *c.key : firmware::link::Key128{}, c.tx_data_id, c.session, c.profile),
         receiver_(c.key ? *c.key : firmware::link::Key128{}, c.rx_data_id, c.session, c.profile) {}
 
   // The sender and session fields as this end sends them, before the MAC is computed (the MAC covers the
   // sender id, so it must stand in the frame first).
-  LinkEnvelope header() const { return LinkEnvelope{c_.own_sender, c_.session, 0, 0}; }
+  LinkEnvelope header() const { return LinkEnvelope{c_.own_sender, c_.session, 0, 0, c_.scene}; }
 
   // The envelope of the next frame this end sends; `payload` is every byte of the frame the MAC covers.
   LinkEnvelope protect(std::span<const std::uint8_t> payload) {
-    LinkEnvelope e{c_.own_sender, c_.session, 0, 0};
+    LinkEnvelope e{c_.own_sender, c_.session, 0, 0, c_.scene};
     if (c_.key) {
       const firmware::link::SecuredFields f = sender_.protect(payload);
       e.freshness = f.freshness;
@@ -107,6 +114,7 @@ class LinkGuard {
       case GuardVerdict::kForeign: ++counters_.foreign; break;
       case GuardVerdict::kBadMac: ++counters_.bad_mac; break;
       case GuardVerdict::kReplayed: ++counters_.replayed; break;
+      case GuardVerdict::kOtherScene: ++counters_.other_scene; break;
     }
     return v;
   }
@@ -126,6 +134,7 @@ class LinkGuard {
   std::uint64_t session() const { return c_.session; }
   std::uint64_t peer() const { return peer_; }
   std::uint64_t own_sender() const { return c_.own_sender; }
+  std::uint64_t scene() const { return c_.scene; }
   bool authenticated() const { return c_.key.has_value(); }
   const GuardCounters& counters() const { return counters_; }
 
@@ -136,6 +145,10 @@ class LinkGuard {
     if (e.sender == 0) return GuardVerdict::kForeign;
     if (c_.session != 0 && e.session != c_.session) return GuardVerdict::kForeign;
     if (peer_ != 0 && e.sender != peer_) return GuardVerdict::kForeign;
+    if (c_.scene != 0 && e.scene != c_.scene) {
+      counters_.last_other_scene = e.scene;
+      return GuardVerdict::kOtherScene;
+    }
     if (!c_.key) return GuardVerdict::kOk;
     // Before the session is bound the frame is judged against the session it claims; only a frame under
     // the key verifies, whatever session it names.
@@ -149,10 +162,10 @@ class LinkGuard {
   }
 
   GuardConfig c_{};
+  std::uint64_t peer_{0};
   firmware::link::SecOcSender sender_{firmware::link::Key128{}, 0, 0, firmware::link::SecOcProfile{}};
   firmware::link::SecOcReceiver receiver_{firmware::link::Key128{}, 0, 0, firmware::link::SecOcProfile{}};
   std::uint64_t plain_freshness_{0};
-  std::uint64_t peer_{0};
   GuardCounters counters_{};
 };
 

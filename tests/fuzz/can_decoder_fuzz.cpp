@@ -35,10 +35,10 @@ void judge_envelope(const SetAssembler& rx) {
   const std::span<const CanFrame> frames(set.data(), n);
   gyrostab::firmware::link::Key128 secret;
   for (std::size_t i = 0; i < secret.bytes.size(); ++i) secret.bytes[i] = static_cast<std::uint8_t>(0x6b ^ (i * 53));
-  gyrostab::hil::LinkGuard keyed(gyrostab::can::can_guard_config(gyrostab::hil::GuardConfig{7, 0, secret, 1, 2}));
+  gyrostab::hil::LinkGuard keyed(gyrostab::can::can_guard_config(gyrostab::hil::GuardConfig{7, 0, 0, 0, secret, 1, 2}));
   gyrostab::hil::LinkEnvelope e;
   if (gyrostab::can::open(frames, keyed, e) == gyrostab::hil::GuardVerdict::kOk) __builtin_trap();
-  gyrostab::hil::LinkGuard plain(gyrostab::can::can_guard_config(gyrostab::hil::GuardConfig{7, 0, std::nullopt, 1, 2}));
+  gyrostab::hil::LinkGuard plain(gyrostab::can::can_guard_config(gyrostab::hil::GuardConfig{7, 0, 0, 0, std::nullopt, 1, 2}));
   if (gyrostab::can::open(frames, plain, e) == gyrostab::hil::GuardVerdict::kOk && (e.session == 0 || e.sender == 0))
     __builtin_trap();
 }

@@ -2,6 +2,7 @@
 //   - two runs on the same channels: each pair's frames are foreign to the other; nothing foreign is acted
 //     on (both results are the in-process ones, bit for bit) and both runs say so (exit 7);
 //   - pairs started by hand on the same channels: detected, never a silent success;
+//   - a controller started on another scene (another gain) is refused at the handshake, with both scene hashes;
 //   - a bus log played onto a live bus (lcm-logplayer): its frames are refused as recorded;
 //   - with a link key, a third process that copies every envelope and sends forged commands ahead of the
 //     genuine ones changes nothing: every forgery fails its MAC, the run is the in-process run.
@@ -13,7 +14,10 @@
 #include <atomic>
 #include <cmath>
 
+#include <fstream>
+
 #include "hil/lcm/frame_codec.hpp"
+#include "tools/scene/scene_hash.hpp"
 #include "tools/signals/device_signals.hpp"
 #include "tests/lcm/lcm_test_support.hpp"
 
@@ -70,6 +74,39 @@ TEST(LcmSession, PairsStartedByHandOnOneBusAreNeverASilentSuccess) {
     if (e.code == 0) ++silent_successes;
   }
   EXPECT_EQ(silent_successes, 0) << "a process shared its bus with another pair and exited 0";
+}
+
+TEST(LcmSession, AControllerOfAnotherSceneIsRefusedWithBothHashes) {
+  TempDir d;
+  const std::string m = scene("monorail.toml");
+  std::string other_text = read_file(m);
+  const std::size_t at = other_text.find("k = 5500");
+  ASSERT_NE(at, std::string::npos);
+  other_text.replace(at, 8, "k = 6000");  // the same device and frames, another gain
+  const std::string other = d / "monorail-k6000.toml";
+  std::ofstream(other) << other_text;
+  const std::string ours = tools::format_scene_hash(tools::scene_hash(read_file(m)));
+  const std::string theirs = tools::format_scene_hash(tools::scene_hash(other_text));
+  ASSERT_NE(ours, theirs);
+  const std::vector<std::string> common{"--ticks", "2000", "--timeout-ms", "500", "--start-timeout-ms", "2000",
+                                        "--channel-suffix", "_scene"};
+  const pid_t p = spawn(cat({gyrostab_bin(), "plant", m, "--out", d / "p"}, common));
+  const Exit c = run(cat({gyrostab_bin(), "controller", other, "--out", d / "c"}, common));
+  const Exit pe = wait_for(p);
+  EXPECT_NE(c.code, 0);
+  EXPECT_NE(pe.code, 0);
+  // The controller saw only the plant's frames, every one of another scene: it never bound, and says whose.
+  const nlohmann::json rc = read_json(d / "c/report.json");
+  const nlohmann::json& session = rc["link"]["session"];
+  EXPECT_GT(session["refused"]["other_scene"].get<int>(), 0) << session.dump();
+  EXPECT_EQ(session["scene"], theirs) << session.dump();
+  EXPECT_EQ(session["other_scene"], ours) << session.dump();
+  const std::string why = rc["link"]["what_happened"].get<std::string>();
+  EXPECT_NE(why.find(ours), std::string::npos) << why;
+  EXPECT_NE(why.find(theirs), std::string::npos) << why;
+  // Nothing of the other scene's controller was applied: the plant never bound either.
+  const nlohmann::json rp = read_json(d / "p/report.json");
+  EXPECT_TRUE(rp["link"]["session"]["peer"].is_null()) << rp["link"]["session"].dump();
 }
 
 TEST(LcmSession, ALogPlayedOntoALiveBusIsRefusedAsRecorded) {

@@ -167,6 +167,7 @@ struct Wait {
   hil::FrameOrder order;
   tools::LinkSettings s;
   msg::ActuatorFrame got{};
+  hil::SourceWatch watch;
   Wait() {
     s.resend_ns = 30'000'000;
     order.accept(6, 6);
@@ -175,7 +176,7 @@ struct Wait {
     const std::int64_t now = hil::monotonic_ns();
     msg::AnyActuatorFrame any{};
     const tools::CommandWait w = tools::wait_for_command(e.plant, order, hil::ActuatorLimits{}, msg::kSignals, 7,
-                                                         hil::kNoDeadline, true, now + lost_after_ns, s, any);
+                                                         hil::kNoDeadline, true, now + lost_after_ns, s, any, watch);
     msg::from_any(any, got);
     return w;
   }

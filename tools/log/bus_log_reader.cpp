@@ -15,9 +15,10 @@ namespace gyrostab::tools::buslog {
 
 namespace {
 // A log records every frame with the empty envelope (session 0: never live, so that a log played onto a bus
-// is refused by every live end); anything else in it is a corruption.
+// is refused by every live end; scene 0: the log's scene event names the scene once); anything else in it is
+// a corruption.
 bool recorded_envelope(const hil::LinkEnvelope& e) {
-  return e.sender == 0 && e.session == 0 && e.freshness == 0 && e.mac == 0;
+  return e.sender == 0 && e.session == 0 && e.freshness == 0 && e.mac == 0 && e.scene == 0;
 }
 // A frame of another size or fingerprint is most likely from a build with another contract (the frames grew
 // when the cluster fields were added): say so, with both sizes.

@@ -32,6 +32,7 @@
 #include "hil/link/actuator_frame_check.hpp"
 #include "hil/link/frame_endpoint.hpp"
 #include "hil/link/memory_bus.hpp"
+#include "hil/link/source_watch.hpp"
 #include "hil/rt/deadline_pacer.hpp"
 #include "hil/rt/rt_setup.hpp"
 #include "tools/devices/registry.hpp"
@@ -60,6 +61,10 @@ struct ControllerLinkOutcome {
   std::int64_t acknowledgements{0};    // link-loss trips acknowledged after kAcknowledgeAfterGoodFrames
   bool transport_error{false};
   int stop_signal{0};
+  std::int64_t end_tick{-1};       // the plant's end-of-run frame (docs/protocol.md): its tick
+  std::int64_t hijack_tick{-1};    // a second source speaking as the plant (hil/link/source_watch.hpp)
+  bool hijack_by_stale_run{false};
+  bool hijack_seen_by_plant{false};  // the plant's end-of-run frame says a second source sent as this controller
 };
 
 // The safe state was caused by the link alone: frames missing or stale, no bad sensor content.
@@ -69,7 +74,7 @@ bool tripped_by_link_only(std::uint32_t status) {
   return causes != 0 && (causes & ~link) == 0;
 }
 
-enum class SensorWait { kAccepted, kSkipped, kMissing, kLost, kStopped, kError };
+enum class SensorWait { kAccepted, kSkipped, kMissing, kLost, kStopped, kError, kEnd };
 
 // Real time: where the controller believes the plant's clock is — the arrival of the sensor frame of
 // `tick` (ns). The deadline for tick k follows from it.
@@ -83,11 +88,13 @@ struct PlantPhase {
   }
 };
 
+// kEnd: `frame` is the plant's end-of-run frame (its tick is the first the run did not have). `watch` sees
+// every frame of the bound plant.
 template <class Transport>
 SensorWait wait_for_sensor(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& order, std::int64_t k,
                            PlantPhase& phase, std::int64_t lost_at_ns, bool lockstep, const LinkSettings& s,
                            std::int64_t last_sent_tick, std::int64_t& last_republish_ns, msg::AnySensorFrame& frame,
-                           msg::AnySensorFrame& early) {
+                           msg::AnySensorFrame& early, hil::SourceWatch& watch, std::size_t signals) {
   hil::LinkCounters& c = ep.counters();
   const auto tick = static_cast<std::uint64_t>(k);
   for (;;) {
@@ -109,14 +116,26 @@ SensorWait wait_for_sensor(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& o
       ++c.rejected_before_handshake;
       continue;
     }
+    const bool from_peer = ep.guard().bound();
+    const std::uint64_t content = hil::frame_content_hash(f, signals);
+    // The end of the run: the plant's next frame, whatever tick this end expected (in real time it may have
+    // stepped further, or not yet so far).
+    if ((f.status & msg::bit(msg::SensorStatusBit::kEndOfRun)) != 0u && from_peer &&
+        order.sequence_advances(f.sequence)) {
+      order.accept(f.tick, f.sequence);  // not counted as accepted: that counts the run's sensor frames
+      frame = f;
+      return SensorWait::kEnd;
+    }
     const hil::OrderVerdict o = order.classify(f.tick, f.sequence, tick);
     if (o == hil::OrderVerdict::kExpected) {
       order.accept(f.tick, f.sequence);
+      watch.accepted(f.tick, content);
       ++c.accepted;
       frame = f;
       if (!ep.guard().bound()) ep.bind_to_last();
       return SensorWait::kAccepted;
     }
+    if (from_peer) watch.refused(f.tick, content, o == hil::OrderVerdict::kStale && f.tick < tick);
     if (o == hil::OrderVerdict::kAhead && f.tick - tick <= static_cast<std::uint64_t>(kMaxAheadTicks)) {
       early = f;  // the plant withheld ticks k .. f.tick - 1: they are stepped as missing, then this one
       return SensorWait::kSkipped;
@@ -145,12 +164,48 @@ SensorWait wait_for_sensor(hil::FrameEndpoint<Transport>& ep, hil::FrameOrder& o
   }
 }
 
+// The number of sensor values of the device whose frames this endpoint carries.
+template <class Endpoint>
+std::size_t signals_of_controller(const Endpoint& ep) {
+  if constexpr (requires { ep.signals(); }) {
+    return ep.signals().sensors.size();
+  } else {
+    return msg::kMaxSensorSignals;
+  }
+}
+
+// Answers the plant's end-of-run frame: an actuator frame of its tick with kEndOfRun, every command at its safe
+// value; answered again for every copy of it that comes within the resend interval (the plant resends until it
+// has the answer).
+template <class Transport>
+void acknowledge_end(hil::FrameEndpoint<Transport>& ep, const msg::AnySensorFrame& end, const msg::AnyActuatorFrame& last,
+                     std::uint32_t monitor_status, const LoopConfig& cfg, const LinkSettings& s) {
+  msg::AnyActuatorFrame ack{};
+  ack.tick = end.tick;
+  ack.time_ns = static_cast<std::int64_t>(end.tick) * cfg.tick_ns;
+  ack.sensor_tick = last.sensor_tick;
+  ack.sequence = last.sequence + 1;
+  ack.status = msg::bit(msg::FaultBit::kEndOfRun) | (monitor_status & 0xFFFFu);
+  if constexpr (requires { ep.signals(); }) {
+    const auto specs = ep.signals().commands;
+    for (std::size_t i = 0; i < specs.size(); ++i) ack.signal[i] = specs[i].safe;
+  }
+  ep.send(ack, static_cast<std::int64_t>(end.tick) * cfg.tick_ns / 1000);
+  const std::int64_t until = hil::monotonic_ns() + 2 * s.resend_ns;
+  for (;;) {
+    msg::AnySensorFrame f{};
+    if (ep.receive(until, f) != hil::RxStatus::kMessage) return;
+    if (f.tick == end.tick && (f.status & msg::bit(msg::SensorStatusBit::kEndOfRun)) != 0u) ep.resend();
+  }
+}
+
 template <class Transport>
 void run_controller_loop(ControllerPort& ctl, const LoopConfig& cfg, const RunRequest& req, const LinkSettings& s,
                          hil::FrameEndpoint<Transport>& ep, LinkStats& stats, ControllerLinkOutcome& link) {
   const TransportOptions& t = req.transport;
-  const std::int64_t ticks = cfg.ticks();
+  const std::size_t signals = signals_of_controller(ep);
   hil::FrameOrder order;
+  hil::SourceWatch watch;
   JitterInjector jitter(s, cfg.seed);
   msg::AnySensorFrame frame{}, early{};
   bool have_early = false;
@@ -161,7 +216,9 @@ void run_controller_loop(ControllerPort& ctl, const LoopConfig& cfg, const RunRe
   std::int64_t good_in_a_row = 0;
   std::int64_t last_heard = hil::monotonic_ns();
   bool heard_any = false;
-  for (std::int64_t k = 0; k < ticks; ++k) {
+  // Until the plant's end-of-run frame (the plant decides how long a run is), the plant is lost, a stop request
+  // comes, or a second source speaks as the plant; `--ticks` given to the controller stops it there instead.
+  for (std::int64_t k = 0; req.ticks < 0 || k < req.ticks; ++k) {
     if (stop_signal_received() != 0) {
       link.stop_signal = stop_signal_received();
       break;
@@ -180,7 +237,22 @@ void run_controller_loop(ControllerPort& ctl, const LoopConfig& cfg, const RunRe
       w = SensorWait::kMissing;  // a withheld tick before the early frame
     } else {
       w = wait_for_sensor(ep, order, k, phase, lost_at, lockstep, s, last_sent_tick, last_republish, frame,
-                          early);
+                          early, watch, signals);
+      watch.end_tick(k, lockstep);
+      if (watch.hijacked()) {
+        link.hijack_by_stale_run = watch.conflict_tick() < 0;
+        link.hijack_tick = link.hijack_by_stale_run ? watch.stale_streak_tick() : watch.conflict_tick();
+        break;
+      }
+      if (w == SensorWait::kEnd) {
+        link.end_tick = static_cast<std::int64_t>(frame.tick);
+        if ((frame.status & msg::bit(msg::SensorStatusBit::kSecondSource)) != 0u) {
+          link.hijack_seen_by_plant = true;
+          link.hijack_tick = link.end_tick;
+        }
+        acknowledge_end(ep, frame, out, ctl.monitor_status(), cfg, s);
+        break;
+      }
       if (w == SensorWait::kSkipped) {
         have_early = true;
         w = SensorWait::kMissing;
@@ -284,7 +356,8 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
     std::fprintf(stderr, "gyrostab controller: %s\n", error.c_str());
     return 2;
   }
-  hil::FrameEndpoint<Transport> ep(transport, hil::controller_guard(guard.own_id, guard.session, guard.key),
+  hil::FrameEndpoint<Transport> ep(transport,
+                                   hil::controller_guard(guard.own_id, guard.session, guard.key, loop.scene_hash),
                                    signals_of(scene));
   if (req.transport.loss > 0) ep.inject_loss(req.transport.loss, loop.seed, 2);
   auto stats = std::make_unique<LinkStats>();
@@ -311,8 +384,25 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
   if constexpr (requires { ep.report_extra(); }) l["can"] = ep.report_extra();  // CAN level
   l["missing_ticks"] = link.missing_ticks;
   l["safe_state_tick"] = link.safe_state_tick >= 0 ? nlohmann::json(link.safe_state_tick) : nlohmann::json();
+  if (link.end_tick >= 0) l["end_of_run"] = {{"tick", link.end_tick}};
   std::string happened = "completed";
-  if (link.peer_lost) {
+  if (link.hijack_tick >= 0) {
+    happened = link.hijack_seen_by_plant
+        ? "hijacked: the plant saw a second source send as this controller and ended the run at tick " +
+              std::to_string(link.hijack_tick) +
+              " (without a link key anyone who reads the bus can copy the ids: use --key-file)"
+        : "hijacked: a second source sends as plant " + format_link_id(ep.guard().peer()) +
+               (link.hijack_by_stale_run
+                    ? " (its frames were refused as stale on " + std::to_string(hil::SourceWatch::kStaleTicks) +
+                          " ticks in a row up to tick " + std::to_string(link.hijack_tick) + ")"
+                    : " (two different sensor frames for tick " + std::to_string(link.hijack_tick) + ")") +
+               "; the controller stopped there (without a link key anyone who reads the bus can copy the ids: "
+               "use --key-file)";
+    l["hijacked"] = {{"tick", link.hijack_tick},
+                     {"evidence", link.hijack_seen_by_plant ? "the plant's end-of-run frame"
+                                  : link.hijack_by_stale_run ? "stale frames every tick"
+                                                             : "two frames for one tick"}};
+  } else if (link.peer_lost) {
     happened = "plant lost: no sensor frame for tick " + std::to_string(link.lost_at_tick) + " within " +
                std::to_string(link.silent_ns / 1'000'000) + " ms; " +
                (link.safe_state_tick >= 0 ? "safe state from tick " + std::to_string(link.safe_state_tick)
@@ -368,6 +458,10 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
       std::fprintf(stderr, "gyrostab controller: %s\n", error.c_str());
       return 3;
     }
+  }
+  if (link.hijack_tick >= 0) {
+    std::fprintf(stderr, "gyrostab controller: %s: %s\n", loop.name.c_str(), happened.c_str());
+    return kExitForeignFrames;
   }
   if (link.peer_lost) {
     std::fprintf(stderr, "gyrostab controller: %s: %s (receive timeout %lld ms)\n", loop.name.c_str(),

@@ -155,8 +155,19 @@ inline void add_link_options(CLI::App* cmd, RunRequest& req, LinkSide side) {
            "the link's session id (0x... or decimal; default: the plant draws one, the controller binds to "
            "the plant of its first handshake)")
         ->group("Session");
+    cmd->add_option_function<std::string>(
+           "--controller-id",
+           [&t](const std::string& v) {
+             if (!parse_link_id(v, t.controller_id))
+               throw CLI::ValidationError("--controller-id", "an id in [1, 2^32): " + v);
+           },
+           "the controller's sender id (0x... or decimal): the controller sends with it, the plant accepts no "
+           "other (default: the controller draws one, the plant binds to it at the handshake)")
+        ->group("Session");
   }
-  cmd->add_option("--ticks", req.ticks, "run exactly this many ticks instead of the scene's duration")
+  cmd->add_option("--ticks", req.ticks,
+                  "run exactly this many ticks instead of the scene's duration (a controller: stop after this many "
+                  "ticks; by default it runs until the plant's end-of-run frame)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--lcm-url", t.lcm_url, "LCM provider URL (default udpm://239.255.76.67:7667?ttl=0)");
   cmd->add_option("--lcm-actuator-url", t.lcm_actuator_url,

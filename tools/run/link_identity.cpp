@@ -80,9 +80,10 @@ bool link_identity(const TransportOptions& t, bool plant_side, LinkIdentity& out
   if (plant_side) {
     out.session = t.session != 0 ? t.session : drawn;
     out.own_id = out.session;
+    out.peer = t.controller_id;
   } else {
     out.session = t.session;
-    out.own_id = drawn;
+    out.own_id = t.controller_id != 0 ? t.controller_id : drawn;
   }
   return true;
 }

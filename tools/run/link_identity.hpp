@@ -16,6 +16,7 @@ namespace gyrostab::tools {
 struct LinkIdentity {
   std::uint64_t session{0};  // 0: the controller binds at the handshake
   std::uint64_t own_id{0};
+  std::uint64_t peer{0};     // the plant: its controller's id when given (--controller-id); 0: the handshake's
   std::optional<firmware::link::Key128> key;
 };
 

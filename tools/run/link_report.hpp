@@ -11,6 +11,7 @@
 #include "hil/rt/latency_histogram.hpp"
 #include "hil/link/link_guard.hpp"
 #include "tools/run/link_identity.hpp"
+#include "tools/scene/scene_hash.hpp"
 #include "tools/run/link_settings.hpp"
 #include "tools/run/link_stats.hpp"
 
@@ -50,12 +51,20 @@ inline nlohmann::json counters_json(const hil::LinkCounters& c) {
 // report.json link.session of a guard: who this end was, whom it bound to, and what the guard refused.
 inline nlohmann::json session_json(const hil::LinkGuard& g) {
   const hil::GuardCounters& c = g.counters();
-  return {{"session", format_link_id(g.session())},
-          {"own_id", format_link_id(g.own_sender())},
-          {"peer", g.bound() ? nlohmann::json(format_link_id(g.peer())) : nlohmann::json(nullptr)},
-          {"authenticated", g.authenticated()},
-          {"refused",
-           {{"recorded", c.recorded}, {"foreign", c.foreign}, {"bad_mac", c.bad_mac}, {"replayed", c.replayed}}}};
+  nlohmann::json j = {
+      {"session", format_link_id(g.session())},
+      {"own_id", format_link_id(g.own_sender())},
+      {"peer", g.bound() ? nlohmann::json(format_link_id(g.peer())) : nlohmann::json(nullptr)},
+      {"scene", g.scene() != 0 ? nlohmann::json(format_scene_hash(g.scene())) : nlohmann::json(nullptr)},
+      {"authenticated", g.authenticated()},
+      {"refused",
+       {{"recorded", c.recorded},
+        {"foreign", c.foreign},
+        {"bad_mac", c.bad_mac},
+        {"replayed", c.replayed},
+        {"other_scene", c.other_scene}}}};
+  if (c.other_scene > 0) j["other_scene"] = format_scene_hash(c.last_other_scene);
+  return j;
 }
 
 // report.json link.session: who this end was, whom it bound to, and what the guard refused.
@@ -71,7 +80,11 @@ nlohmann::json session_json(const Endpoint& ep) {
 template <class Endpoint>
 std::string refused_hint(const Endpoint& ep) {
   std::string hint;
-  if (const std::uint64_t refused = ep.guard().counters().rejected(); refused > 0)
+  const hil::GuardCounters& g = ep.guard().counters();
+  if (g.other_scene > 0)
+    hint += "; " + std::to_string(g.other_scene) + " frames came from an end running another scene (its hash " +
+            format_scene_hash(g.last_other_scene) + ", ours " + format_scene_hash(ep.guard().scene()) + ")";
+  if (const std::uint64_t refused = g.rejected() - g.other_scene; refused > 0)
     hint += "; " + std::to_string(refused) + " frames on the link were not this session's or failed its authentication";
   if constexpr (requires { ep.sensor_counters(); }) {
     std::uint64_t out_of_sequence = 0;
@@ -93,11 +106,18 @@ inline int completed_exit_code(const char* role, const std::string& scene_name, 
                                std::uint64_t peer_refused = 0) {
   const std::uint64_t refused = g.counters().rejected();
   if (refused == 0 && peer_refused == 0) return 0;
-  if (refused > 0) {
+  if (g.counters().other_scene > 0) {
+    std::fprintf(stderr,
+                 "gyrostab %s: %s: completed, but %llu frames came from an end running another scene (its hash %s, "
+                 "ours %s); none was acted on\n",
+                 role, scene_name.c_str(), static_cast<unsigned long long>(g.counters().other_scene),
+                 format_scene_hash(g.counters().last_other_scene).c_str(), format_scene_hash(g.scene()).c_str());
+  }
+  if (refused > g.counters().other_scene) {
     std::fprintf(stderr,
                  "gyrostab %s: %s: completed, but %llu frames on the link were not this session's or failed its "
                  "authentication (report.json link.session.refused); none was acted on\n",
-                 role, scene_name.c_str(), static_cast<unsigned long long>(refused));
+                 role, scene_name.c_str(), static_cast<unsigned long long>(refused - g.counters().other_scene));
   }
   if (peer_refused > 0) {
     std::fprintf(stderr,

@@ -82,7 +82,50 @@ struct PlantLinkOutcome {
   std::int64_t first_watchdog_tick{-1};
   bool transport_error{false};
   int stop_signal{0};
+  // A second source speaking as the controller (hil/link/source_watch.hpp): the tick of the evidence.
+  std::int64_t hijack_tick{-1};
+  bool hijack_by_stale_run{false};
+  // The end-of-run frame (docs/protocol.md): its tick, and whether the controller acknowledged it.
+  std::int64_t end_tick{-1};
+  bool end_acknowledged{false};
 };
+
+// After the last tick: the end-of-run frame for the next tick (status kEndOfRun, signals zero), sent again every
+// resend interval until the controller acknowledges it (an actuator frame of that tick with kEndOfRun) or the
+// receive timeout passes. The controller stops on it; it never has to know the run's length.
+template <class Transport>
+void send_end_of_run(hil::FrameEndpoint<Transport>& ep, std::int64_t tick, const LoopConfig& cfg,
+                     const LinkSettings& s, PlantLinkOutcome& link, bool second_source) {
+  msg::AnySensorFrame end{};
+  end.tick = static_cast<std::uint64_t>(tick);
+  end.time_ns = tick * cfg.tick_ns;
+  end.sample_time_ns = end.time_ns;
+  end.sequence = static_cast<std::uint32_t>(tick);
+  end.status = msg::bit(msg::SensorStatusBit::kEndOfRun) |
+               (second_source ? msg::bit(msg::SensorStatusBit::kSecondSource) : 0u);
+  link.end_tick = tick;
+  if (!ep.send(end, tick * cfg.tick_ns / 1000)) return;
+  const std::int64_t give_up = hil::monotonic_ns() + s.timeout_ns;
+  std::int64_t next_resend = hil::monotonic_ns() + s.resend_ns;
+  for (;;) {
+    msg::AnyActuatorFrame a{};
+    const hil::RxStatus r = ep.receive(std::min(give_up, next_resend), a);
+    if (r == hil::RxStatus::kError) return;
+    if (r == hil::RxStatus::kMessage) {
+      if (a.tick == end.tick && (a.status & msg::bit(msg::FaultBit::kEndOfRun)) != 0u) {
+        link.end_acknowledged = true;
+        return;
+      }
+      continue;
+    }
+    const std::int64_t now = hil::monotonic_ns();
+    if (now >= give_up) return;
+    if (now >= next_resend) {
+      ep.resend();
+      next_resend = now + s.resend_ns;
+    }
+  }
+}
 
 template <class Transport>
 LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& limits,
@@ -95,6 +138,7 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
   const int latency = cfg.latency_ticks;
   const TransportOptions& t = req.transport;
   hil::FrameOrder order;
+  hil::SourceWatch watch;
   JitterInjector jitter(s, cfg.seed);
   PlantTick plant(plant_port, cfg, recorder, rows);
   msg::AnySensorFrame sensor{};
@@ -158,7 +202,8 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
                        : t_sent + static_cast<std::int64_t>(kMissingCommandFraction * static_cast<double>(s.timeout_ns));
       }
       const std::int64_t lost_at = (handshake ? t_sent : last_heard) + (handshake ? s.start_timeout_ns : s.timeout_ns);
-      w = wait_for_command(ep, order, limits, signals, k, deadline, lockstep, lost_at, s, command);
+      w = wait_for_command(ep, order, limits, signals, k, deadline, lockstep, lost_at, s, command, watch);
+      watch.end_tick(k, lockstep);
     }
     const std::int64_t t_got = hil::monotonic_ns();
     if (w == CommandWait::kStopped) {
@@ -168,6 +213,13 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
     }
     if (w == CommandWait::kError) {
       link.transport_error = true;
+      break;
+    }
+    if (watch.hijacked()) {
+      // Two sources speak as the controller: no command of this run can be trusted from here on. Stop before
+      // this tick is integrated.
+      link.hijack_by_stale_run = watch.conflict_tick() < 0;
+      link.hijack_tick = link.hijack_by_stale_run ? watch.stale_streak_tick() : watch.conflict_tick();
       break;
     }
     if (!dropped || s.real_time) missing_in_a_row = w == CommandWait::kAccepted ? 0 : missing_in_a_row + 1;
@@ -203,6 +255,13 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
     if (s.real_time && !handshake && t_end > epoch + (k + 1) * s.period_ns) ++stats.overruns;
   }
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // The target link ends its session with its own Stop frame (hil/target/target_session.cpp).
+  if constexpr (!std::is_same_v<Transport, hil::TargetBus>) {
+    // After a hijack too: the genuine controller learns why its run ends (it may not see the second source).
+    if (!link.peer_lost && !link.transport_error && ep.guard().bound()) {
+      send_end_of_run(ep, out.ticks_run, cfg, s, link, link.hijack_tick >= 0);
+    }
+  }
   return out;
 }
 
@@ -227,7 +286,8 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   const hil::ActuatorLimits limits = scene.actuator_limits();
   Recorder rec = scene_recorder(scene, req.ticks >= 0 ? req.ticks : loop.ticks());
   const LinkSettings s = link_settings(run_loop, req.transport);
-  hil::FrameEndpoint<Transport> ep(transport, hil::plant_guard(guard.session, guard.key), signals_of(scene));
+  hil::FrameEndpoint<Transport> ep(transport, hil::plant_guard(guard.session, guard.key, loop.scene_hash, guard.peer),
+                                   signals_of(scene));
   if (req.transport.loss > 0) ep.inject_loss(req.transport.loss, loop.seed, 1);
   auto stats = std::make_unique<LinkStats>();
   PlantLinkOutcome link;
@@ -288,8 +348,21 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   }
   l["actuator_limits"] = actuator_limits_json(limits, signals_of(scene));
   l["drive_watchdog"] = {{"zero_torque_ticks", link.watchdog_ticks}, {"first_tick", link.first_watchdog_tick}};
+  if (link.end_tick >= 0) {
+    l["end_of_run"] = {{"tick", link.end_tick}, {"acknowledged", link.end_acknowledged}};
+  }
   std::string happened = "completed";
-  if (link.peer_lost) {
+  if (link.hijack_tick >= 0) {
+    happened = "hijacked: a second source sends as controller " + format_link_id(ep.guard().peer()) +
+               (link.hijack_by_stale_run
+                    ? " (its frames were refused as stale on " + std::to_string(hil::SourceWatch::kStaleTicks) +
+                          " ticks in a row up to tick " + std::to_string(link.hijack_tick) + ")"
+                    : " (two different commands for tick " + std::to_string(link.hijack_tick) + ")") +
+               "; the run was stopped there: its results are not the loop's (without a link key anyone who "
+               "reads the bus can copy the ids: use --key-file)";
+    l["hijacked"] = {{"tick", link.hijack_tick},
+                     {"evidence", link.hijack_by_stale_run ? "stale frames every tick" : "two commands for one tick"}};
+  } else if (link.peer_lost) {
     happened = "controller lost: no actuator frame for tick " + std::to_string(link.lost_at_tick) + " within " +
                std::to_string(link.silent_ns / 1'000'000) + " ms; drives at zero torque from tick " +
                std::to_string(link.zero_torque_from_tick) + refused_hint(ep);
@@ -307,6 +380,8 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   } else if (outcome.diverged) {
     happened = "the plant state became non-finite at tick " + std::to_string(outcome.diverged_tick);
   }
+  if (link.end_tick >= 0 && !link.end_acknowledged)
+    happened += "; the controller did not acknowledge the end of the run within the receive timeout";
   l["what_happened"] = happened;
   if (rt != nullptr) l["real_time_setup"] = {{"sched_fifo", rt->fifo}, {"priority", rt->priority},
                                              {"mlockall", rt->memory_locked}, {"message", rt->message}};
@@ -322,6 +397,10 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   if (logging && !log_error.empty()) {
     std::fprintf(stderr, "gyrostab plant: %s\n", log_error.c_str());
     return 3;
+  }
+  if (link.hijack_tick >= 0) {
+    std::fprintf(stderr, "gyrostab plant: %s: %s\n", loop.name.c_str(), happened.c_str());
+    return kExitForeignFrames;
   }
   if (link.peer_lost) {
     std::fprintf(stderr, "gyrostab plant: %s: %s (receive timeout %lld ms); outputs up to it are written\n",

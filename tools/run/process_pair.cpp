@@ -32,12 +32,15 @@ std::string fault_arg(const FrameFault& f) {
 }
 
 std::vector<std::string> child_args(const RunRequest& req, const std::string& role, const std::string& suffix,
-                                    std::uint64_t session) {
+                                    std::uint64_t session, std::uint64_t controller_id) {
   const TransportOptions& t = req.transport;
   std::vector<std::string> a{"gyrostab", role, req.scene_path, "--out",
                              role == "plant" ? req.out_dir : req.out_dir + "/controller"};
   // One session for both children, so the controller can bind to nobody else's plant.
   a.insert(a.end(), {"--session", format_link_id(session)});
+  // And the controller's id for both: the plant accepts commands from nobody else, from the first tick on (a
+  // second source speaking as it is caught as a hijack, hil/link/source_watch.hpp).
+  a.insert(a.end(), {"--controller-id", format_link_id(controller_id)});
   if (!t.key_file.empty()) a.insert(a.end(), {"--key-file", t.key_file});
   if (req.ticks >= 0) a.insert(a.end(), {"--ticks", std::to_string(req.ticks)});
   if (!t.lcm_actuator_url.empty()) a.insert(a.end(), {"--lcm-actuator-url", t.lcm_actuator_url});
@@ -161,7 +164,9 @@ int run_process_pair(const RunRequest& req) {
   std::filesystem::remove(req.out_dir + "/controller/report.json", ec);
   std::fflush(nullptr);
   const std::uint64_t session = req.transport.session != 0 ? req.transport.session : hil::draw_link_id();
-  if (session == 0) {
+  std::uint64_t controller_id = req.transport.controller_id != 0 ? req.transport.controller_id : hil::draw_link_id();
+  while (controller_id == session) controller_id = hil::draw_link_id();
+  if (session == 0 || controller_id == 0) {
     std::fprintf(stderr, "gyrostab run: the OS's random source (getrandom) failed: cannot draw a session id\n");
     return 3;
   }
@@ -174,8 +179,8 @@ int run_process_pair(const RunRequest& req) {
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
   Child controller{"controller"}, plant{"plant"};
-  controller.pid = spawn(child_args(req, "controller", suffix, session));
-  plant.pid = spawn(child_args(req, "plant", suffix, session));
+  controller.pid = spawn(child_args(req, "controller", suffix, session, controller_id));
+  plant.pid = spawn(child_args(req, "plant", suffix, session, controller_id));
   if (controller.pid < 0 || plant.pid < 0) {
     std::fprintf(stderr, "gyrostab run: fork failed: %s\n", std::strerror(errno));
     if (controller.pid > 0) kill(controller.pid, SIGTERM);

@@ -58,6 +58,8 @@ struct TransportOptions {
   // Sessions and authentication (tools/run/link_identity.hpp, docs/transport.md):
   std::string key_file;               // the link key: every frame carries a MAC (empty: session binding only)
   std::uint64_t session{0};           // the session both ends use (0: the plant draws one, the controller binds)
+  std::uint64_t controller_id{0};     // the controller's sender id, known to both ends (0: the controller draws
+                                      // one, the plant binds to it at the handshake)
   // Processor in the loop (`run --transport target`, tools/run/target_link_setup.hpp, docs/pil.md):
   std::string target_image;           // the controller image (empty: the build's image of the scene's device)
   std::string target_link{"fifo"};    // fifo (semihosting, fast) or uart (the board's UART0)

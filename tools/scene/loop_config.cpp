@@ -43,6 +43,7 @@ std::int64_t LoopConfig::ticks() const {
 LoopConfig read_loop_config(SceneReader& r, const char* default_integrator,
                             std::initializer_list<std::string_view> integrators) {
   LoopConfig c;
+  c.scene_hash = r.text_hash();
   c.device = r.text("scene", "device", "", "device model");
   schema::read(r, kFields, c);
   if (std::abs(c.tick_us * 1e3 - static_cast<double>(c.tick_ns)) > 1e-6) {

@@ -27,6 +27,7 @@ struct LoopConfig {
   int record_every{10};              // [output] record_every: CSV row every N ticks
   bool plots{true};                  // [output] plots: PNG via /usr/bin/python3 + matplotlib
   std::vector<std::string> signals;  // [output] signals: the CSV columns to record; empty = all the device's
+  std::uint64_t scene_hash{0};       // the scene file's identity (tools/scene/scene_hash.hpp), not a key
 
   std::int64_t ticks() const;
   double tick_s() const { return 1e-9 * static_cast<double>(tick_ns); }

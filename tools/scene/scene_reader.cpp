@@ -1,5 +1,7 @@
 #include "tools/scene/scene_reader.hpp"
 
+#include "tools/scene/scene_hash.hpp"
+
 #include "tools/scene/toml_limits.hpp"
 
 #include <cmath>
@@ -78,6 +80,7 @@ bool SceneReader::open(const std::string& path) {
 
 bool SceneReader::parse(std::string_view text, const std::string& name) {
   name_ = name;
+  text_hash_ = scene_hash(text);
   if (const std::string why = toml_limits_problem(text, name); !why.empty()) {
     errors_.push_back(why);
     return false;

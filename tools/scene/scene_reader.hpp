@@ -75,12 +75,15 @@ class SceneReader {
   bool ok() const { return errors_.empty(); }
   const std::vector<std::string>& errors() const { return errors_; }
   const std::string& name() const { return name_; }
+  // The scene's identity: scene_hash() of the bytes parsed (tools/scene/scene_hash.hpp).
+  std::uint64_t text_hash() const { return text_hash_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string name_;
   std::string file_root_;
+  std::uint64_t text_hash_{0};
   std::vector<std::string> errors_;
 };
 

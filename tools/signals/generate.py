@@ -37,6 +37,7 @@ ACTUATOR_HEADER = [("tick", "std::uint64_t", "int64_t", "controller tick at whic
                    ("sequence", "std::uint32_t", "int32_t", "controller's frame counter, wraps at 2^32", "-"),
                    ("status", "std::uint32_t", "int32_t", "FaultBit set (firmware/msg/fault_bits.hpp)", "bits")]
 TRAILER = [("sim_time_us", "simulated time of the tick [us]"),
+           ("scene", "the sender's scene hash: FNV-1a 64 of its scene file (docs/protocol.md)"),
            ("sender", "the sending end's id (docs/protocol.md)"),
            ("session", "the plant's session id; 0 in a bus log"),
            ("freshness", "the sender's frame counter on this channel"),
