@@ -132,7 +132,7 @@ TEST(FrameEndpoint, CountsCodecRejectionsAndPassesGoodFrames) {
   e.bus->to_plant.push(buf, n);  // fingerprint
   buf[0] ^= 1;
   msg::SensorFrame s{};
-  std::uint8_t sbuf[256];
+  std::uint8_t sbuf[512];  // the legacy sensor message is 264 bytes
   e.bus->to_plant.push(sbuf, hil::encode(msg::any_of(s), msg::kSignals, 0, sbuf, sizeof sbuf));  // another type: its size differs
   e.bus->to_plant.push(buf, n);                                      // good
   msg::ActuatorFrame got{};
