@@ -280,7 +280,7 @@ def fingerprint(messages: list[Message]) -> int:
         h.update(f"{m.id:x} {m.name} {m.direction} {m.length} {int(m.header)} {m.node}\n".encode())
         for s in m.signals:
             h.update(f" {s.name} {s.start_bit} {s.bit_length} {s.kind} {s.field_offset} {int(s.integer)}\n".encode())
-    return int.from_bytes(h.digest()[:8], "little")
+    return int(h.hexdigest()[:16], 16)
 
 
 def describe(t: Table) -> str:
