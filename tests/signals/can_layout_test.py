@@ -113,6 +113,8 @@ class Packing(Tables):
         self.assertEqual(m["DRIVE2_FB"].signals[3].field_offset, 32 + 8 * 2)
         self.assertEqual(m["DRIVE1_CMD"].signals[3].field_offset, 32 + 8 * 1)
         self.assertEqual(m["IMU_FB"].length, 20)
+        b2 = m["DRIVE2_FB"].signals[3]
+        self.assertEqual((b2.table_name, b2.element, b2.value), ("b", 1, 2))
         covered_once(self, t, can_layout.layout(t))
 
     def test_a_node_with_more_than_a_frame_holds_gets_more_frames(self):

@@ -29,11 +29,17 @@ control document shows the same result. The wire rules (docs/can.md):
 The map lists the command frames, then the sensor frames, each direction's body frames by identifier and its
 header last: the order frames are sent in.
 
+For other generators (the interface control document): layout(table) returns the Message list — id, name,
+sender, node, direction, length, header, comment and the signals, each a CanSignal with its start bit, length,
+kind, byte offset in the generic frame, range, unit, comment and, for a table value, the table's signal name,
+element and value index. messages_for_nodes() applies the legacy table's node filter for a device's nodes.
+
     python3 tools/signals/can_layout.py TABLE...    prints each table's frames and signals
 """
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import sys
 from dataclasses import dataclass, field
@@ -81,9 +87,11 @@ class CanSignal:
     unit: str
     comment: str
     integer: bool = False   # a double frame field carried as an integer (the table's can = "int32", ...)
-    value: int = -1          # the frame value it carries (index in the table's values), -1: none
+    value: int = -1          # the frame value it carries (index in the direction's values), -1: none
     factor: float = 1.0
     offset: float = 0.0
+    table_name: str = ""     # the table's signal it carries ("" for envelope and header fields)
+    element: int = 0         # its element (from 0) of that signal
 
     @property
     def start_byte(self) -> int:
@@ -180,19 +188,18 @@ def _values(t: Table, direction: str) -> list[_Value]:
             comment = f"{s.symbol}: {what}" + (f" (element {e + 1} of {s.count})" if s.count > 1 else "")
             if s.can == CAN_DOUBLE:
                 sig = CanSignal(name, 0, 64, "double", FRAME_HEADER_BYTES + 8 * i, s.lo, s.hi, s.unit, comment,
-                                False, i)
+                                False, i, table_name=s.name, element=e)
             else:
                 bits, signed = CAN_INTEGER_TYPES[s.can]
                 comment += f"; an integer, carried exactly as {s.can}"
                 sig = CanSignal(name, 0, bits, "signed" if signed else "unsigned", FRAME_HEADER_BYTES + 8 * i,
-                                s.lo, s.hi, s.unit, comment, True, i)
+                                s.lo, s.hi, s.unit, comment, True, i, table_name=s.name, element=e)
             out.append(_Value(i, s.nodes[e], sig))
     return out
 
 
 def _place(sig: CanSignal, byte: int) -> CanSignal:
-    return CanSignal(sig.name, 8 * byte, sig.bit_length, sig.kind, sig.field_offset, sig.min, sig.max, sig.unit,
-                     sig.comment, sig.integer, sig.value, sig.factor, sig.offset)
+    return dataclasses.replace(sig, start_bit=8 * byte)
 
 
 def frame_id(direction: str, node: str, k: int) -> int:
