@@ -114,31 +114,37 @@ constexpr std::size_t field_bytes(const SignalSpec& s) {
 // The messages one device's bus carries: its map, less (transitional, legacy table only) the frames of nodes
 // the device does not have.
 struct DeviceBus {
-  const CanMap* map{nullptr};
-  std::uint32_t present{0};  // bit i: map->messages[i] is on this bus
+  const CanMap* map{nullptr};  // nullptr: no bus (no messages)
+  std::uint32_t present{0};    // bit i: map->messages[i] is on this bus
 
-  constexpr std::span<const MessageSpec> messages() const { return map->messages; }
-  constexpr bool has(std::size_t i) const { return ((present >> i) & 1u) != 0; }
+  constexpr std::span<const MessageSpec> messages() const {
+    return map != nullptr ? map->messages : std::span<const MessageSpec>{};
+  }
+  constexpr bool has(std::size_t i) const { return i < 32 && ((present >> i) & 1u) != 0; }
   // Index of the message with this identifier in the map, or -1. O(messages).
   constexpr int index_of(std::uint32_t id) const {
-    for (std::size_t i = 0; i < map->messages.size(); ++i)
-      if (map->messages[i].id == id) return static_cast<int>(i);
+    const std::span<const MessageSpec> m = messages();
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (m[i].id == id) return static_cast<int>(i);
     return -1;
   }
   // Bit i set: message i is part of a tick's set in this direction.
   constexpr std::uint32_t mask(Direction d) const {
-    std::uint32_t m = 0;
-    for (std::size_t i = 0; i < map->messages.size(); ++i)
-      if (map->messages[i].direction == d && has(i)) m |= 1u << i;
-    return m;
+    const std::span<const MessageSpec> m = messages();
+    std::uint32_t out = 0;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (m[i].direction == d && has(i)) out |= 1u << i;
+    return out;
   }
   constexpr std::size_t frames(Direction d) const {
+    const std::span<const MessageSpec> m = messages();
     std::size_t n = 0;
-    for (std::size_t i = 0; i < map->messages.size(); ++i) n += map->messages[i].direction == d && has(i);
+    for (std::size_t i = 0; i < m.size(); ++i) n += m[i].direction == d && has(i);
     return n;
   }
   // The generic frame's bytes in use: header and the device's values.
   constexpr std::size_t frame_bytes(Direction d) const {
+    if (map == nullptr || map->signals == nullptr) return msg::kFrameHeaderBytes;
     return msg::kFrameHeaderBytes +
            sizeof(double) * (d == Direction::kSensor ? map->signals->sensors.size() : map->signals->commands.size());
   }
