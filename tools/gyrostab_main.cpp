@@ -8,6 +8,7 @@
 
 #include "tools/accuracy/accuracy_command.hpp"
 #include "tools/commands.hpp"
+#include "tools/dbc_command.hpp"
 #include "tools/demo_gimbal_gyro.hpp"
 #include "tools/motion_record_command.hpp"
 #include "tools/replay_command.hpp"
@@ -16,7 +17,6 @@
 #include "tools/scene/scene_keys.hpp"
 #include "tools/sweep/merge.hpp"
 #include "tools/sweep/sweep_command.hpp"
-#include "hil/can/dbc_writer.hpp"
 
 #ifndef GYROSTAB_VERSION
 #define GYROSTAB_VERSION "unknown"
@@ -193,11 +193,12 @@ int main(int argc, char** argv) {
       "merge", "merge a study directory's task files into results/ (tables, summaries, heat maps) and timing.json");
   merge_cmd->add_option("dir", merge_dir, "study directory")->required();
 
-  // The DBC file of the CAN bus (docs/can.md): written from the frame map (hil/can/frame_map.hpp).
-  std::string dbc_out;
+  // The DBC file of a device's CAN bus (docs/can.md): written from the map its signal table generates.
+  gyrostab::tools::DbcRequest dbc;
   CLI::App* dbc_cmd = app.add_subcommand(
-      "dbc", "write the DBC file of the CAN FD bus (frame map: ids, lengths, signals, scaling, units, ranges)");
-  dbc_cmd->add_option("--out", dbc_out, "file to write (default: standard output)");
+      "dbc", "write the DBC file of a device's CAN FD bus (its map: ids, lengths, signals, scaling, units, ranges)");
+  dbc_cmd->add_option("device", dbc.target, "device name, or a scene file (its device)")->required();
+  dbc_cmd->add_option("--out", dbc.out, "file to write (default: standard output)");
 
   gyrostab::tools::MotionRecordRequest record;
   CLI::App* record_cmd = app.add_subcommand(
@@ -222,16 +223,7 @@ int main(int argc, char** argv) {
     std::fputs(gyrostab::tools::scenes_markdown().c_str(), stdout);
     return 0;
   }
-  if (dbc_cmd->parsed()) {
-    const std::string text = gyrostab::can::dbc_text();
-    std::FILE* f = dbc_out.empty() ? stdout : std::fopen(dbc_out.c_str(), "w");
-    if (f == nullptr || std::fwrite(text.data(), 1, text.size(), f) != text.size() ||
-        (f != stdout && std::fclose(f) != 0)) {
-      std::fprintf(stderr, "gyrostab dbc: cannot write %s\n", dbc_out.c_str());
-      return 3;
-    }
-    return 0;
-  }
+  if (dbc_cmd->parsed()) return gyrostab::tools::write_dbc(dbc);
   if (accuracy_cmd->parsed()) return gyrostab::tools::run_accuracy(accuracy);
   if (merge_cmd->parsed()) return gyrostab::tools::sweep::merge_study_dir(merge_dir, sweep.quiet);
   if (sweep_cmd->parsed()) {

@@ -1,4 +1,4 @@
-// Bus load of the CAN FD bus of a device (frame_map.hpp) at its tick rate, and the 70 % limit above which a
+// Bus load of the CAN FD bus of a device (frame_map.hpp DeviceBus: the frames of its map) at its tick rate, and the 70 % limit above which a
 // scene is refused for CAN (docs/can.md). Worst-case bit stuffing, as CAN tools quote it (canbusload's
 // default): what the bus must be able to carry whatever the data.
 //
@@ -59,12 +59,13 @@ struct BusLoad {
   bool acceptable() const { return load <= kMaxBusLoad; }
 };
 
-// Load of one sensor set and one command set per tick, at tick_rate_hz, for a device with these nodes.
-constexpr BusLoad bus_load(NodeSet nodes, double tick_rate_hz, const BusTiming& timing) {
+// Load of one sensor set and one command set per tick, at tick_rate_hz, on a device's bus.
+constexpr BusLoad bus_load(const DeviceBus& bus, double tick_rate_hz, const BusTiming& timing) {
   BusLoad b;
-  for (const MessageSpec& m : kMessages) {
-    if (!message_present(m, nodes)) continue;
-    b.busy_s_per_tick += frame_time_s(fd_frame_bits(m.length), timing);
+  const std::span<const MessageSpec> messages = bus.messages();
+  for (std::size_t i = 0; i < messages.size(); ++i) {
+    if (!bus.has(i)) continue;
+    b.busy_s_per_tick += frame_time_s(fd_frame_bits(messages[i].length), timing);
     ++b.frames_per_tick;
   }
   b.load = b.busy_s_per_tick * tick_rate_hz;

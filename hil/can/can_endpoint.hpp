@@ -2,11 +2,12 @@
 // the SocketCAN bus, so the plant and controller loops (tools/run/plant_process.hpp, controller_process.hpp)
 // run over CAN unchanged: the same send / resend / receive / counters calls, the same lockstep and real-time
 // rules, the same fault handling. What differs underneath (docs/can.md):
-//   send(frame)      one contract frame → the CAN FD frames of its direction for the device's nodes
-//                    (hil/can/frame_codec.hpp), header last, each written to the socket; a value in a field of
-//                    a node the device does not have is refused: the endpoint turns fatal (receive() then
-//                    reports kError, the loop stops with "transport failed") and says which field
-//   resend()         the last contract frame again, re-encoded: new alive counters (a byte-identical CAN frame
+//   send(frame)      one generic frame → the CAN FD frames of its direction on the device's bus (its map,
+//                    hil/can/frame_codec.hpp), header last, each written to the socket; a value the bus cannot
+//                    carry exactly (not an integer where the map carries one, or a node the device does not
+//                    have) is refused: the endpoint turns fatal (receive() then reports kError, the loop stops
+//                    with "transport failed") and says which signal and why
+//   resend()         the last frame again, re-encoded: new alive counters (a byte-identical CAN frame
 //                    would be rejected by the receiver as a stale repeat); at most every resend_min_ns (250 ms):
 //                    the bus delivers what was sent, a resend only serves a node that was not listening yet
 //   receive(...)     CAN frames from the socket into the set assembler until a tick's set completes; every
@@ -18,7 +19,7 @@
 // With a candump log attached, every frame sent and received is written to it in bus order, stamped with the
 // simulated time of its tick in lockstep (deterministic logs, canplayer replays them at the scene's rate) or
 // with the kernel's receive time / the send time (CLOCK_REALTIME) in real time.
-// LinkCounters stay at contract-frame level (received = complete sets delivered); the CAN level is in
+// LinkCounters stay at frame level (received = complete sets delivered); the CAN level is in
 // can_counters() and report_extra() ("can" in report.json). No heap after construction.
 #pragma once
 
@@ -33,6 +34,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hil/can/bus_load.hpp"
+#include "hil/can/bus_nodes.hpp"
 #include "hil/can/candump_log.hpp"
 #include "hil/can/frame_codec.hpp"
 #include "hil/can/link_seal.hpp"
@@ -45,7 +47,7 @@ namespace gyrostab::can {
 struct CanBusTransport {
   SocketCan socket;
   std::string ifname;
-  NodeSet nodes{kAllNodes};
+  DeviceBus bus{};  // the device's map, and which of its frames are on the bus (can_link_setup.hpp)
   std::int64_t tick_ns{1'000'000};
   bool real_time{false};
   BusTiming timing{};
@@ -66,14 +68,23 @@ namespace gyrostab::hil {
 template <>
 class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
  public:
+  // `signals` must be the frames of the bus's map (the same device's table): a mismatch turns the endpoint fatal.
   FrameEndpoint(can::CanBusTransport& bus, const GuardConfig& guard, const msg::DeviceSignals& signals)
       : EndpointBook(can::can_guard_config(guard)),
         bus_(bus),
         signals_(signals),
-        sensor_tx_(can::Direction::kSensor, bus.nodes),
-        actuator_tx_(can::Direction::kActuator, bus.nodes),
-        sensor_rx_(can::Direction::kSensor, bus.nodes),
-        actuator_rx_(can::Direction::kActuator, bus.nodes) {}
+        sensor_tx_(bus.bus, can::Direction::kSensor),
+        actuator_tx_(bus.bus, can::Direction::kActuator),
+        sensor_rx_(bus.bus, can::Direction::kSensor),
+        actuator_rx_(bus.bus, can::Direction::kActuator) {
+    if (bus.bus.map == nullptr || bus.bus.map->signals->device != signals.device ||
+        bus.bus.map->signals->sensors.size() != signals.sensors.size() ||
+        bus.bus.map->signals->commands.size() != signals.commands.size()) {
+      fatal_ = true;
+      fatal_message_ = "the CAN map is not the one of the device's signal table";
+      std::fprintf(stderr, "gyrostab: CAN: %s\n", fatal_message_.c_str());
+    }
+  }
 
   bool send(const msg::AnySensorFrame& f, std::int64_t sim_time_us) {
     last_sensor_ = f;
@@ -117,7 +128,10 @@ class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
   nlohmann::json report_extra() const {
     nlohmann::json j;
     j["interface"] = bus_.ifname;
-    j["nodes"] = node_names(bus_.nodes);
+    if (bus_.bus.map != nullptr) {
+      j["map"] = {{"table", bus_.bus.map->device}, {"fingerprint", fingerprint_text(bus_.bus.map->fingerprint)}};
+      j["nodes"] = node_names(bus_.bus);
+    }
     j["bitrate"] = {{"nominal", bus_.timing.nominal_bitrate}, {"data", bus_.timing.data_bitrate}};
     j["bus_load"] = {{"load", bus_.load.load},
                      {"frames_per_tick", bus_.load.frames_per_tick},
@@ -148,17 +162,35 @@ class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
             {"out_of_range_values", c.out_of_range_values}};
   }
 
-  static nlohmann::json node_names(can::NodeSet n) {
-    nlohmann::json a = nlohmann::json::array({"sensor_hub", "controller"});
-    if (n & can::kNodeImu) a.push_back("imu");
-    if (n & can::kNodeDrive1) a.push_back("drive1");
-    if (n & can::kNodeDrive2) a.push_back("drive2");
-    if (n & can::kNodeCluster) a.push_back("cluster");
+  static nlohmann::json node_names(const can::DeviceBus& b) {
+    nlohmann::json a = nlohmann::json::array();
+    for (std::string_view n : can::bus_nodes(b)) a.push_back(std::string(n));
     return a;
+  }
+
+  static std::string fingerprint_text(std::uint64_t f) {
+    char buf[24];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(f));
+    return buf;
   }
 
  private:
   enum class Last { kNone, kSensor, kActuator };
+
+  static std::string violation_text(const can::FieldViolation& v) {
+    const std::string where = std::string(v.message) + "." + std::string(v.signal);
+    char value[40];
+    std::snprintf(value, sizeof value, "%.17g", v.value);
+    if (v.cause == can::FieldViolation::Cause::kNotInteger) {
+      const bool is_signed = v.spec != nullptr && v.spec->kind == can::SignalKind::kSigned;
+      const int bits = v.spec != nullptr ? v.spec->bit_length : 0;
+      return "the device set " + where + " to " + value + ", which its CAN signal carries as " +
+             (is_signed ? "int" : "uint") + std::to_string(bits) +
+             " (the signal table's can key): only an integer of that type travels exactly, so the frame is refused";
+    }
+    return "the device set " + where + " (" + value + ") but has no node that carries it on the CAN bus (the "
+           "legacy table's frames of a node the device's descriptor does not list in can_nodes)";
+  }
 
   static std::int64_t now_ns(clockid_t clock) {
     timespec ts{};
@@ -180,9 +212,7 @@ class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
     const std::size_t n = enc.encode(f, tx_, &v);
     if (n == 0) {
       fatal_ = true;
-      fatal_message_ = "the device set " + std::string(v.message) + "." + std::string(v.signal) +
-                       " but has no node that carries it on the CAN bus (tools/run/can_link_setup.hpp lists the "
-                       "nodes of each device)";
+      fatal_message_ = violation_text(v);
       std::fprintf(stderr, "gyrostab: CAN: %s\n", fatal_message_.c_str());
       ++counters_.send_errors;
       return false;

@@ -10,13 +10,9 @@ namespace gyrostab::can {
 namespace {
 
 static_assert(std::endian::native == std::endian::little,
-              "the frame map is little-endian and the codec copies contract fields bytewise");
+              "the frame map is little-endian and the codec copies frame fields bytewise");
 
-std::size_t contract_size(Direction d) {
-  return d == Direction::kSensor ? sizeof(msg::SensorFrame) : sizeof(msg::ActuatorFrame);
-}
-
-bool is_contract_signal(const SignalSpec& s) {
+bool is_frame_signal(const SignalSpec& s) {
   return s.field_offset >= 0;
 }
 
@@ -27,25 +23,74 @@ std::uint64_t raw_bits(const std::uint8_t* p, std::size_t bytes) {
   return v;
 }
 
-// The physical value of a contract signal (for the range statistics only; the contract gets the raw bits).
+void put_bits(std::uint8_t* p, std::uint64_t v, std::size_t bytes) {
+  for (std::size_t i = 0; i < bytes; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+
+// The integer value of raw bits of a signal of an integer kind.
+double integer_value(const SignalSpec& s, std::uint64_t raw) {
+  if (s.kind == SignalKind::kUnsigned) return static_cast<double>(raw);
+  const unsigned shift = static_cast<unsigned>(64 - s.bit_length);
+  return static_cast<double>(static_cast<std::int64_t>(raw << shift) >> shift);
+}
+
+// The physical value of a frame signal (for the range statistics only; the frame gets the raw bits).
 double physical(const SignalSpec& s, const std::uint8_t* p, bool& finite) {
-  const std::size_t bytes = s.bit_length / 8u;
-  const std::uint64_t raw = raw_bits(p, bytes);
-  double v = 0.0;
+  const std::uint64_t raw = raw_bits(p, s.bit_length / 8u);
   finite = true;
-  switch (s.kind) {
-    case SignalKind::kDouble: v = std::bit_cast<double>(raw); finite = std::isfinite(v); break;
-    case SignalKind::kUnsigned: v = static_cast<double>(raw); break;
-    case SignalKind::kSigned: {
-      const unsigned shift = static_cast<unsigned>(64 - s.bit_length);
-      v = static_cast<double>(static_cast<std::int64_t>(raw << shift) >> shift);
-      break;
-    }
+  double v = 0.0;
+  if (s.kind == SignalKind::kDouble) {
+    v = std::bit_cast<double>(raw);
+    finite = std::isfinite(v);
+  } else {
+    v = integer_value(s, raw);
   }
   return v * s.factor + s.offset;
 }
 
+double frame_double(const std::uint8_t* frame, const SignalSpec& s) {
+  double v;
+  std::memcpy(&v, frame + s.field_offset, sizeof v);
+  return v;
+}
+
+// A frame field onto the wire: its bytes, or the integer its double holds (checked by carriable()).
+void write_signal(const SignalSpec& s, const std::uint8_t* frame, std::uint8_t* payload) {
+  std::uint8_t* at = payload + s.start_bit / 8u;
+  if (!s.integer) {
+    std::memcpy(at, frame + s.field_offset, s.bit_length / 8u);
+    return;
+  }
+  std::uint64_t raw = 0;
+  integer_raw(s, frame_double(frame, s), raw);
+  put_bits(at, raw, s.bit_length / 8u);
+}
+
+// The wire onto a frame field: its bytes, or the double of the integer.
+void read_signal(const SignalSpec& s, const std::uint8_t* payload, std::uint8_t* frame) {
+  const std::uint8_t* at = payload + s.start_bit / 8u;
+  if (!s.integer) {
+    std::memcpy(frame + s.field_offset, at, s.bit_length / 8u);
+    return;
+  }
+  const double v = integer_value(s, raw_bits(at, s.bit_length / 8u));
+  std::memcpy(frame + s.field_offset, &v, sizeof v);
+}
+
 }  // namespace
+
+bool integer_raw(const SignalSpec& s, double v, std::uint64_t& raw) {
+  if (!s.integer || s.bit_length == 0 || s.bit_length > 32 || s.kind == SignalKind::kDouble) return false;
+  const unsigned bits = s.bit_length;
+  const double lo = s.kind == SignalKind::kSigned ? -std::ldexp(1.0, static_cast<int>(bits) - 1) : 0.0;
+  const double hi = s.kind == SignalKind::kSigned ? std::ldexp(1.0, static_cast<int>(bits) - 1) - 1.0
+                                                  : std::ldexp(1.0, static_cast<int>(bits)) - 1.0;
+  // NaN fails every comparison; -0.0 would come back as +0.0.
+  if (!(v >= lo && v <= hi) || std::trunc(v) != v || (v == 0.0 && std::signbit(v))) return false;
+  const auto i = static_cast<std::int64_t>(v);
+  raw = static_cast<std::uint64_t>(i) & (bits == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1u);
+  return true;
+}
 
 std::string_view frame_error_name(FrameError e) {
   switch (e) {
@@ -87,10 +132,8 @@ std::size_t used_bytes(const MessageSpec& m) {
 
 // --- FrameEncoder ------------------------------------------------------------------------------------------
 
-FrameEncoder::FrameEncoder(Direction direction, NodeSet nodes) : direction_(direction), nodes_(nodes) {
-  for (const MessageSpec& m : kMessages)
-    if (m.direction == direction && message_present(m, nodes)) ++count_;
-}
+FrameEncoder::FrameEncoder(const DeviceBus& bus, Direction direction)
+    : bus_(bus), direction_(direction), count_(bus.frames(direction)) {}
 
 std::size_t FrameEncoder::encode(const msg::AnySensorFrame& f, std::span<CanFrame> out, FieldViolation* violation) {
   if (direction_ != Direction::kSensor) return 0;
@@ -102,38 +145,52 @@ std::size_t FrameEncoder::encode(const msg::AnyActuatorFrame& f, std::span<CanFr
   return encode_bytes(reinterpret_cast<const std::uint8_t*>(&f), out, violation);
 }
 
-std::size_t FrameEncoder::encode_bytes(const std::uint8_t* contract, std::span<CanFrame> out,
-                                       FieldViolation* violation) {
-  if (out.size() < count_) return 0;
-  // Both contract structs begin with the 64-bit tick.
-  const std::uint64_t tick = raw_bits(contract, 8);
-  // Refuse before sending anything: a value in a field no node of this device carries.
-  for (const MessageSpec& m : kMessages) {
-    if (m.direction != direction_ || message_present(m, nodes_)) continue;
+bool FrameEncoder::carriable(const std::uint8_t* frame, FieldViolation* violation) const {
+  const auto refuse = [&](FieldViolation::Cause cause, const MessageSpec& m, const SignalSpec& s) {
+    // Every value of a device's table is a double in the frame (the header's fields are never refused).
+    const bool value = s.field_offset >= static_cast<int>(msg::kFrameHeaderBytes);
+    if (violation != nullptr) *violation = FieldViolation{cause, m.name, s.name, value ? frame_double(frame, s) : 0.0, &s};
+    return false;
+  };
+  const std::span<const MessageSpec> messages = bus_.messages();
+  for (std::size_t i = 0; i < messages.size(); ++i) {
+    const MessageSpec& m = messages[i];
+    if (m.direction != direction_) continue;
     for (const SignalSpec& s : m.signals) {
-      if (!is_contract_signal(s)) continue;
-      const std::uint8_t* p = contract + s.field_offset;
-      for (std::size_t i = 0; i < s.bit_length / 8u; ++i) {
-        if (p[i] != 0) {
-          if (violation != nullptr) *violation = FieldViolation{m.name, s.name};
-          return 0;
-        }
+      if (!is_frame_signal(s)) continue;
+      if (!bus_.has(i)) {
+        // Not on this bus (legacy node filter): the value must be all zero bits, a sign bit included.
+        const std::uint8_t* p = frame + s.field_offset;
+        for (std::size_t b = 0; b < field_bytes(s); ++b)
+          if (p[b] != 0) return refuse(FieldViolation::Cause::kAbsentNode, m, s);
+      } else if (s.integer) {
+        std::uint64_t raw = 0;
+        if (!integer_raw(s, frame_double(frame, s), raw)) return refuse(FieldViolation::Cause::kNotInteger, m, s);
       }
     }
   }
+  return true;
+}
+
+std::size_t FrameEncoder::encode_bytes(const std::uint8_t* frame, std::span<CanFrame> out,
+                                       FieldViolation* violation) {
+  if (out.size() < count_) return 0;
+  // Refuse before encoding anything (the alive counters stay as they are).
+  if (!carriable(frame, violation)) return 0;
+  // Both generic frames begin with the 64-bit tick.
+  const std::uint64_t tick = raw_bits(frame, 8);
+  const std::span<const MessageSpec> messages = bus_.messages();
   std::size_t n = 0;
-  for (std::size_t idx = 0; idx < kMessageCount; ++idx) {
-    const MessageSpec& m = kMessages[idx];
-    if (m.direction != direction_ || !message_present(m, nodes_)) continue;
+  for (std::size_t idx = 0; idx < messages.size(); ++idx) {
+    const MessageSpec& m = messages[idx];
+    if (m.direction != direction_ || !bus_.has(idx)) continue;
     CanFrame& c = out[n++];
     c = CanFrame{};
     c.id = m.id;
     c.len = m.length;
     c.flags = kFlagFd | kFlagBrs;
-    for (const SignalSpec& s : m.signals) {
-      if (!is_contract_signal(s)) continue;
-      std::memcpy(c.data + s.start_bit / 8u, contract + s.field_offset, s.bit_length / 8u);
-    }
+    for (const SignalSpec& s : m.signals)
+      if (is_frame_signal(s)) write_signal(s, frame, c.data);
     c.data[kAliveByte] = static_cast<std::uint8_t>(alive_[idx] & kAliveMask);
     alive_[idx] = static_cast<std::uint8_t>((alive_[idx] + 1u) & kAliveMask);
     c.data[kTickTagByte] = static_cast<std::uint8_t>(tick & 0xFFu);
@@ -145,9 +202,8 @@ std::size_t FrameEncoder::encode_bytes(const std::uint8_t* contract, std::span<C
 
 // --- SetAssembler ------------------------------------------------------------------------------------------
 
-SetAssembler::SetAssembler(Direction direction, NodeSet nodes)
-    : direction_(direction), nodes_(nodes), mask_(can::message_mask(direction, nodes)),
-      contract_size_(contract_size(direction)) {}
+SetAssembler::SetAssembler(const DeviceBus& bus, Direction direction)
+    : bus_(bus), direction_(direction), mask_(bus.mask(direction)), frame_size_(bus.frame_bytes(direction)) {}
 
 FrameError SetAssembler::reject(FrameError e, std::uint32_t id) {
   ++counters_.rejected[static_cast<std::size_t>(e)];
@@ -160,11 +216,11 @@ FrameError SetAssembler::check(const CanFrame& f, int& index) {
   if ((f.flags & kFlagError) != 0) return FrameError::kErrorFrame;
   if ((f.flags & kFlagRemote) != 0) return FrameError::kRemote;
   if ((f.flags & kFlagExtended) != 0) return FrameError::kExtendedId;
-  index = message_index(f.id);
+  index = bus_.index_of(f.id);
   if (index < 0) return FrameError::kUnknownId;
-  const MessageSpec& m = kMessages[static_cast<std::size_t>(index)];
+  const MessageSpec& m = bus_.messages()[static_cast<std::size_t>(index)];
   if (m.direction != direction_) return FrameError::kWrongDirection;
-  if (!message_present(m, nodes_)) return FrameError::kAbsentNode;
+  if (!bus_.has(static_cast<std::size_t>(index))) return FrameError::kAbsentNode;
   if (!f.fd()) return FrameError::kNotFd;
   if (f.len != m.length) return FrameError::kWrongLength;
   if (frame_crc(f.id, f.data, f.len) != f.data[kCrcByte]) return FrameError::kBadCrc;
@@ -182,7 +238,7 @@ void SetAssembler::abandon() {
 
 void SetAssembler::count_values(const MessageSpec& m, const CanFrame& f) {
   for (const SignalSpec& s : m.signals) {
-    if (!is_contract_signal(s)) continue;
+    if (!is_frame_signal(s)) continue;
     bool finite = true;
     const double v = physical(s, f.data + s.start_bit / 8u, finite);
     if (!finite) {
@@ -199,7 +255,7 @@ FrameError SetAssembler::accept(const CanFrame& f) {
   const FrameError e = check(f, index);
   if (e != FrameError::kNone) return reject(e, f.id);
   const auto idx = static_cast<std::size_t>(index);
-  const MessageSpec& m = kMessages[idx];
+  const MessageSpec& m = bus_.messages()[idx];
 
   // Alive counter: +1 mod 16 per frame on this identifier. The first frame synchronises.
   const std::uint8_t alive = f.data[kAliveByte] & kAliveMask;
@@ -218,7 +274,7 @@ FrameError SetAssembler::accept(const CanFrame& f) {
   std::uint64_t header_tick = 0;
   if (m.header) {
     for (const SignalSpec& s : m.signals) {
-      if (s.field_offset == 0) header_tick = raw_bits(f.data + s.start_bit / 8u, 8);
+      if (s.field_offset == 0 && !s.integer) header_tick = raw_bits(f.data + s.start_bit / 8u, 8);
     }
     if (static_cast<std::uint16_t>(header_tick & 0xFFFFu) != tag) return reject(FrameError::kTickMismatch, f.id);
     // The last tick taken may come again (a lockstep resend): it is delivered, the caller's order check
@@ -244,10 +300,8 @@ FrameError SetAssembler::accept(const CanFrame& f) {
     have_ = 0;
     building_bytes_.fill(0);
   }
-  for (const SignalSpec& s : m.signals) {
-    if (!is_contract_signal(s)) continue;
-    std::memcpy(building_bytes_.data() + s.field_offset, f.data + s.start_bit / 8u, s.bit_length / 8u);
-  }
+  for (const SignalSpec& s : m.signals)
+    if (is_frame_signal(s)) read_signal(s, f.data, building_bytes_.data());
   if (m.header) building_tick_ = header_tick;
   building_frames_[idx] = f;
   have_ |= 1u << idx;
@@ -267,9 +321,9 @@ FrameError SetAssembler::accept(const CanFrame& f) {
 }
 
 bool SetAssembler::take_bytes(std::uint8_t* out, std::size_t size, Direction d) {
-  if (!ready_ || d != direction_ || size < contract_size_) return false;
-  std::memcpy(out, ready_bytes_.data(), contract_size_);
-  std::memset(out + contract_size_, 0, size - contract_size_);
+  if (!ready_ || d != direction_ || size < frame_size_) return false;
+  std::memcpy(out, ready_bytes_.data(), frame_size_);
+  std::memset(out + frame_size_, 0, size - frame_size_);
   ready_ = false;
   if (ready_tick_ + 1 > expected_) expected_ = ready_tick_ + 1;
   return true;
@@ -278,7 +332,7 @@ bool SetAssembler::take_bytes(std::uint8_t* out, std::size_t size, Direction d) 
 std::size_t SetAssembler::ready_frames(std::span<CanFrame> out) const {
   if (!ready_) return 0;
   std::size_t n = 0;
-  for (std::size_t i = 0; i < kMessageCount && n < out.size(); ++i)
+  for (std::size_t i = 0; i < bus_.messages().size() && n < out.size(); ++i)
     if ((mask_ & (1u << i)) != 0) out[n++] = ready_frames_[i];
   return n;
 }

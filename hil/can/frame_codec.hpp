@@ -1,12 +1,15 @@
-// Encoder and decoder between the interface contract (msg::AnySensorFrame, msg::AnyActuatorFrame) and the CAN FD
-// frames of hil/can/frame_map.hpp.
+// Encoder and decoder between a device's frames (msg::AnySensorFrame, msg::AnyActuatorFrame with its
+// msg::DeviceSignals) and the CAN FD frames of its map (frame_map.hpp DeviceBus: the map generated from its
+// signal table, gyrostab_signals/<device>_can.hpp). Nothing here knows a device.
 //
-// FrameEncoder: one contract frame → the frames of its direction that the device's nodes send, header last,
-// each with its envelope (CRC-8, alive counter, tick tag). Refuses (returns 0) a contract frame with a non-zero
-// field of a node the device does not have: that value could not travel, and lockstep over CAN would silently
-// stop being bit-identical to in-process.
+// FrameEncoder: one generic frame → the frames of its direction on the device's bus, header last, each with
+// its envelope (CRC-8, alive counter, tick tag). Refuses (returns 0, nothing encoded, no counter advanced) a
+// frame with a value the bus cannot carry exactly: a value that rides as an integer (the table's
+// can = "int32") but is not one of that type (a fraction, out of range, NaN, -0.0), or (legacy table only) a
+// non-zero value of a node the device does not have. Such a value would be lost or changed on the bus, and
+// lockstep over CAN would silently stop being bit-identical to in-process.
 //
-// SetAssembler: received frames → complete contract frames, one per tick. Each frame is checked in this order
+// SetAssembler: received frames → complete generic frames, one per tick. Each frame is checked in this order
 // and rejected with the first failing check (FrameError), counted per cause in RxCounters:
 //   error frame, remote frame, 29-bit id, unknown id, other direction, absent node, classic instead of FD,
 //   wrong length, CRC, reserved bits / padding not zero, alive counter repeated (stale) or skipped (frames lost:
@@ -16,8 +19,9 @@
 // frames of a newer tick abandon an incomplete set (counted). What the receiver does with a tick that has no
 // complete set — step the firmware with no sensor frame (fault monitor: hold, then safe state), or hold the
 // last command at a drive — is the loop's business (docs/can.md).
-// Accepted values are passed on bit for bit; non-finite doubles and values outside the map's range are only
-// counted here, because the firmware's fault monitor must make the same decision as it does in-process.
+// Accepted values are passed on bit for bit (an integer signal as the double of that integer); non-finite
+// doubles and values outside the map's range are only counted here, because the firmware's fault monitor must
+// make the same decision as it does in-process.
 //
 // Resources: fixed-size members, no heap, no exceptions, no I/O (firmware-grade; also the fuzz target's
 // surface, tests/fuzz/can_decoder_fuzz.cpp). accept() is O(frame length + signals of the message).
@@ -29,8 +33,6 @@
 #include <span>
 #include <string_view>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
 #include "firmware/msg/any_frame.hpp"
 #include "hil/can/can_frame.hpp"
 #include "hil/can/frame_map.hpp"
@@ -42,9 +44,9 @@ enum class FrameError : std::uint8_t {
   kErrorFrame,       // an error frame reported by the CAN controller
   kRemote,           // a remote (RTR) frame: this bus never uses them
   kExtendedId,       // a 29-bit identifier: this bus uses 11-bit ones
-  kUnknownId,        // an identifier not in the frame map
+  kUnknownId,        // an identifier not in the device's map
   kWrongDirection,   // a frame of the map this receiver does not take (e.g. a command at the controller)
-  kAbsentNode,       // a frame of a node this device does not have
+  kAbsentNode,       // a frame of a node this device does not have (legacy table: DeviceBus leaves it out)
   kNotFd,            // a classic frame on an identifier of the map (all are CAN FD)
   kWrongLength,      // a length other than the map's
   kBadCrc,           // the CRC-8 does not match
@@ -77,18 +79,25 @@ struct RxCounters {
   std::uint64_t count(FrameError e) const { return rejected[static_cast<std::size_t>(e)]; }
 };
 
-// Where a contract frame had a value the device's nodes cannot carry.
+// A value of a frame the bus cannot carry exactly (FrameEncoder::encode refused the frame).
 struct FieldViolation {
-  std::string_view message;  // the absent node's message
-  std::string_view signal;   // the non-zero field
+  enum class Cause : std::uint8_t {
+    kAbsentNode,  // a non-zero value of a frame that is not on this device's bus (legacy table's node filter)
+    kNotInteger,  // a value that rides as an integer but is not an integer of its type (or is -0.0)
+  };
+  Cause cause{Cause::kAbsentNode};
+  std::string_view message;  // the frame that carries it
+  std::string_view signal;   // the signal
+  double value{0.0};
+  const SignalSpec* spec{nullptr};
 };
 
 class FrameEncoder {
  public:
-  FrameEncoder(Direction direction, NodeSet nodes);
+  FrameEncoder(const DeviceBus& bus, Direction direction);
 
   // The frames of one sensor (kSensor) or actuator (kActuator) frame into out (capacity ≥ frames_per_set()),
-  // header last. Returns the number written, or 0 (and *violation) when a field of an absent node is not zero.
+  // header last. Returns the number written, or 0 (and *violation) when a value cannot travel exactly.
   std::size_t encode(const msg::AnySensorFrame& f, std::span<CanFrame> out, FieldViolation* violation = nullptr);
   std::size_t encode(const msg::AnyActuatorFrame& f, std::span<CanFrame> out, FieldViolation* violation = nullptr);
   // A device's typed frame (its bytes are the generic frame's first ones).
@@ -101,17 +110,18 @@ class FrameEncoder {
   Direction direction() const { return direction_; }
 
  private:
-  std::size_t encode_bytes(const std::uint8_t* contract, std::span<CanFrame> out, FieldViolation* violation);
+  std::size_t encode_bytes(const std::uint8_t* frame, std::span<CanFrame> out, FieldViolation* violation);
+  bool carriable(const std::uint8_t* frame, FieldViolation* violation) const;
 
+  DeviceBus bus_;
   Direction direction_;
-  NodeSet nodes_;
   std::size_t count_{0};
-  std::array<std::uint8_t, kMessageCount> alive_{};
+  std::array<std::uint8_t, kMaxMessages> alive_{};
 };
 
 class SetAssembler {
  public:
-  SetAssembler(Direction direction, NodeSet nodes);
+  SetAssembler(const DeviceBus& bus, Direction direction);
 
   // Check one received frame and add it to its tick's set. kNone: accepted (ready() may now be true).
   FrameError accept(const CanFrame& f);
@@ -142,6 +152,7 @@ class SetAssembler {
 
   const RxCounters& counters() const { return counters_; }
   std::uint32_t message_mask() const { return mask_; }
+  Direction direction() const { return direction_; }
 
  private:
   FrameError check(const CanFrame& f, int& index);
@@ -150,13 +161,13 @@ class SetAssembler {
   void count_values(const MessageSpec& m, const CanFrame& f);
   bool take_bytes(std::uint8_t* out, std::size_t size, Direction d);
 
+  DeviceBus bus_;
   Direction direction_;
-  NodeSet nodes_;
   std::uint32_t mask_;
-  std::size_t contract_size_;
+  std::size_t frame_size_;  // bytes of the generic frame the device's values fill
   std::uint64_t expected_{0};
-  std::array<std::uint8_t, kMessageCount> last_alive_{};
-  std::array<bool, kMessageCount> alive_seen_{};
+  std::array<std::uint8_t, kMaxMessages> last_alive_{};
+  std::array<bool, kMaxMessages> alive_seen_{};
   // Set under construction.
   bool building_{false};
   std::uint16_t building_tag_{0};
@@ -167,8 +178,8 @@ class SetAssembler {
   bool ready_{false};
   std::uint64_t ready_tick_{0};
   alignas(8) std::array<std::uint8_t, sizeof(msg::AnySensorFrame)> ready_bytes_{};
-  std::array<CanFrame, kMessageCount> building_frames_{};  // by message index
-  std::array<CanFrame, kMessageCount> ready_frames_{};
+  std::array<CanFrame, kMaxMessages> building_frames_{};  // by message index
+  std::array<CanFrame, kMaxMessages> ready_frames_{};
   RxCounters counters_{};
 };
 
@@ -178,7 +189,10 @@ std::uint8_t frame_crc(std::uint32_t id, const std::uint8_t* data, std::size_t l
 // The number of payload bytes a message's signals use (the rest up to its length is zero padding).
 std::size_t used_bytes(const MessageSpec& m);
 
+// The raw bits of an integer signal (SignalSpec::integer) for the double it carries; false when the value is
+// not an integer of the signal's type (a fraction, out of its range, not finite, -0.0): it cannot travel exactly.
+bool integer_raw(const SignalSpec& s, double v, std::uint64_t& raw);
+
 static_assert(sizeof(msg::AnySensorFrame) >= sizeof(msg::AnyActuatorFrame));
-static_assert(sizeof(msg::SensorFrame) <= sizeof(msg::AnySensorFrame));
 
 }  // namespace gyrostab::can

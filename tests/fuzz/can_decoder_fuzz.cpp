@@ -1,7 +1,9 @@
 // libFuzzer target for the CAN decoders (hil/can/): arbitrary bytes as
-//   1. a stream of received frames, into the set assemblers of both directions for the node set named by the
-//      first byte (record: flags, id low, id high, len, then len data bytes — len is taken modulo 65 and may
-//      disagree with the frame kind, as a hostile bus could make it);
+//   1. a stream of received frames, into the set assemblers of both directions of the bus named by the first
+//      byte: its high bits pick a map of the build (gyrostab_signals/all_can_maps.hpp), its low four bits the
+//      node set of the legacy map's transitional node filter (record: flags, id low, id high, len, then len
+//      data bytes — len is taken modulo 65 and may disagree with the frame kind, as a hostile bus could make
+//      it);
 //   2. candump log text, line by line, through parse_candump_line, and every parsed frame into the assemblers.
 // Invariants beyond "no crash, no sanitizer report": every frame is either accepted or rejected with one
 // cause (frames = accepted + rejections), a completed set can be taken exactly once, and its tick agrees with
@@ -17,6 +19,7 @@
 #include <span>
 #include <string_view>
 
+#include "gyrostab_signals/all_can_maps.hpp"
 #include "hil/can/candump_log.hpp"
 #include "hil/can/frame_codec.hpp"
 #include "hil/can/link_seal.hpp"
@@ -24,6 +27,7 @@
 namespace {
 
 using gyrostab::can::CanFrame;
+using gyrostab::can::DeviceBus;
 using gyrostab::can::Direction;
 using gyrostab::can::FrameError;
 using gyrostab::can::SetAssembler;
@@ -56,12 +60,12 @@ void check(SetAssembler& rx, const CanFrame& f) {
       if (static_cast<std::uint16_t>(tick & 0xFFFFu) != tag) __builtin_trap();
     }
     bool taken = false;
-    if (rx.message_mask() & gyrostab::can::message_mask(Direction::kSensor, gyrostab::can::kAllNodes)) {
-      gyrostab::msg::SensorFrame s{};
+    if (rx.direction() == Direction::kSensor) {
+      gyrostab::msg::AnySensorFrame s{};
       taken = rx.take(s);
       if (taken && s.tick != tick) __builtin_trap();
     } else {
-      gyrostab::msg::ActuatorFrame a{};
+      gyrostab::msg::AnyActuatorFrame a{};
       taken = rx.take(a);
       if (taken && a.tick != tick) __builtin_trap();
     }
@@ -73,9 +77,12 @@ void check(SetAssembler& rx, const CanFrame& f) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
+  constexpr std::size_t kMaps = std::size(gyrostab::can::kAllCanMaps);
+  const gyrostab::can::CanMap& map = *gyrostab::can::kAllCanMaps[(data[0] >> 4) % kMaps];
   const auto nodes = static_cast<gyrostab::can::NodeSet>(data[0] & gyrostab::can::kAllNodes);
-  SetAssembler sensor(Direction::kSensor, nodes);
-  SetAssembler actuator(Direction::kActuator, nodes);
+  const DeviceBus bus = gyrostab::can::device_bus(map, nodes);
+  SetAssembler sensor(bus, Direction::kSensor);
+  SetAssembler actuator(bus, Direction::kActuator);
 
   // 1. Binary frame stream.
   std::size_t i = 1;
@@ -93,7 +100,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   // 2. The same bytes as candump text.
-  SetAssembler sensor2(Direction::kSensor, nodes);
+  SetAssembler sensor2(bus, Direction::kSensor);
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   std::size_t start = 0;
   while (start < text.size()) {

@@ -52,17 +52,26 @@ const char* name_of(Bad b) {
   return "?";
 }
 
-// The test's plant: synthetic sensor sets of a ship roll damper (imu + drive2) over SocketCAN.
+// The identifier of a message of the ship roll damper's bus.
+std::uint32_t damper_id(std::string_view name) {
+  const can::DeviceBus bus = tools::can_bus_of("ship_roll_damper");
+  for (const can::MessageSpec& m : bus.messages())
+    if (m.name == name) return m.id;
+  ADD_FAILURE() << "no message " << name;
+  return 0;
+}
+
+// The test's plant: synthetic sensor sets of a ship roll damper (its bus: imu + drive2) over SocketCAN.
 class FakePlant {
  public:
-  static constexpr can::NodeSet kNodes = can::kNodeImu | can::kNodeDrive2;
   static constexpr std::uint64_t kSession = 0x5e551011;
   explicit FakePlant(std::optional<firmware::link::Key128> key = std::nullopt)
       : guard_(can::can_guard_config(hil::plant_guard(kSession, key))) {
     can::SocketCanConfig c;
     c.ifname = can_if();
-    for (const can::MessageSpec& m : can::kMessages)
-      if (m.direction == can::Direction::kActuator && can::message_present(m, kNodes)) c.receive_ids.push_back(m.id);
+    for (std::size_t i = 0; i < bus_.messages().size(); ++i)
+      if (bus_.messages()[i].direction == can::Direction::kActuator && bus_.has(i))
+        c.receive_ids.push_back(bus_.messages()[i].id);
     std::string error;
     EXPECT_TRUE(socket_.open(c, error)) << error;
   }
@@ -95,7 +104,7 @@ class FakePlant {
     int bad_frames = 0;
     for (std::size_t i = 0; i < n; ++i) {
       CanFrame f = frames[i];
-      if (f.id == 0x182) {
+      if (f.id == drive2_fb_) {
         if (bad) {
           corrupt(f, *bad);
           ++bad_frames;
@@ -135,6 +144,7 @@ class FakePlant {
     switch (bad) {
       case Bad::kWrongLength:
         f.len = 24;  // an FD length, not DRIVE2_FB's 32
+        EXPECT_NE(f.len, drive2_fb_length_);
         break;
       case Bad::kUnknownId:
         f.id = 0x555;
@@ -158,8 +168,12 @@ class FakePlant {
 
   can::SocketCan socket_;
   hil::LinkGuard guard_;
-  can::FrameEncoder enc_{can::Direction::kSensor, kNodes};
-  can::SetAssembler rx_{can::Direction::kActuator, kNodes};
+  const can::DeviceBus bus_ = tools::can_bus_of("ship_roll_damper");
+  const std::uint32_t drive2_fb_ = damper_id("DRIVE2_FB");
+  const std::uint8_t drive2_fb_length_ =
+      bus_.messages()[static_cast<std::size_t>(bus_.index_of(damper_id("DRIVE2_FB")))].length;
+  can::FrameEncoder enc_{bus_, can::Direction::kSensor};
+  can::SetAssembler rx_{bus_, can::Direction::kActuator};
   std::uint8_t last_good_alive_{0};
   std::uint8_t skip_alive_{0};
   bool skip_started_{false};
@@ -355,7 +369,9 @@ TEST(CanFlood, CangenFloodDoesNotStallALockstepRun) {
   // identifier outruns any receiver on vcan, which has no bit rate (the sanitizer build in the emulated VM
   // lost frames to the full socket queue and the lockstep run stalled), and no real bus could deliver it.
   const pid_t random_flood = spawn({"/usr/bin/cangen", can_if(), "-g", "0", "-i"});
-  const pid_t our_id_flood = spawn({"/usr/bin/cangen", can_if(), "-g", "0.13", "-i", "-I", "1A0", "-L", "8"});
+  char hub_id[8];
+  std::snprintf(hub_id, sizeof hub_id, "%03X", damper_id("SENSOR_HUB"));
+  const pid_t our_id_flood = spawn({"/usr/bin/cangen", can_if(), "-g", "0.13", "-i", "-I", hub_id, "-L", "8"});
   const Exit e = run(cat({gyrostab_bin(), "run", path, "--transport", "can", "--can-if", can_if(), "--out", d / "can"},
                          ticks));
   kill(random_flood, SIGTERM);
@@ -373,8 +389,8 @@ TEST(CanFlood, CangenFloodDoesNotStallALockstepRun) {
   EXPECT_EQ(r["link"]["counters"]["accepted"], 400);
   ASSERT_TRUE(rx["rejected"].contains("classic frame on a CAN FD identifier")) << rx.dump();
   EXPECT_GT(rx["rejected"]["classic frame on a CAN FD identifier"].get<int>(), 0);
-  std::printf("[ measured ] flood: the controller rejected %d classic frames on 0x1A0 during 400 ticks\n",
-              rx["rejected"]["classic frame on a CAN FD identifier"].get<int>());
+  std::printf("[ measured ] flood: the controller rejected %d classic frames on 0x%s during 400 ticks\n",
+              rx["rejected"]["classic frame on a CAN FD identifier"].get<int>(), hub_id);
 }
 
 }  // namespace

@@ -10,13 +10,39 @@
 
 #include "hil/can/frame_map.hpp"
 #include "tests/hil/hil_test_support.hpp"
+#include "tools/run/can_link_setup.hpp"
 
 namespace gyrostab::testing {
 namespace {
 
 constexpr const char* kTicks = "300";
 
+// The monorail's bus (the legacy map's imu and drive2 frames).
+const can::DeviceBus& monorail_bus() {
+  static const can::DeviceBus bus = tools::can_bus_of("monorail");
+  return bus;
+}
+
+// A message's identifier as candump writes it (3 hex digits).
+std::string hex_id(std::string_view name) {
+  for (const can::MessageSpec& m : monorail_bus().messages()) {
+    if (m.name != name) continue;
+    char buf[8];
+    std::snprintf(buf, sizeof buf, "%03X", m.id);
+    return buf;
+  }
+  ADD_FAILURE() << "no message " << name;
+  return "";
+}
+
+int id_of(std::string_view name) { return std::stoi(hex_id(name), nullptr, 16); }
+
 std::vector<std::string> frame_lines(const std::string& text, bool commands_only = false) {
+  std::vector<std::string> command_ids;
+  for (std::size_t i = 0; i < monorail_bus().messages().size(); ++i) {
+    const can::MessageSpec& m = monorail_bus().messages()[i];
+    if (m.direction == can::Direction::kActuator && monorail_bus().has(i)) command_ids.push_back(hex_id(m.name));
+  }
   std::vector<std::string> out;
   std::istringstream in(text);
   std::string line;
@@ -24,7 +50,7 @@ std::vector<std::string> frame_lines(const std::string& text, bool commands_only
     if (line.empty() || line[0] != '(') continue;
     std::string rest = line.substr(line.find(") ") + 2);  // "vcan0 ID#DATA": no timestamp
     const std::string id = rest.substr(rest.find(' ') + 1, 3);
-    if (commands_only && id != "080" && id != "101" && id != "102") continue;
+    if (commands_only && std::find(command_ids.begin(), command_ids.end(), id) == command_ids.end()) continue;
     out.push_back(rest);
   }
   return out;
@@ -43,7 +69,7 @@ struct RecordedRun {
     ASSERT_TRUE(wait_for_can_listener(-1)) << "candump never opened its socket";
     const pid_t controller = spawn({gyrostab_bin(), "controller", scene_path, "--can-if", can_if(), "--ticks", kTicks,
                                     "--out", d / "controller"});
-    ASSERT_TRUE(wait_for_can_listener(0x1A0)) << "the controller never opened its socket";
+    ASSERT_TRUE(wait_for_can_listener(id_of("SENSOR_HUB"))) << "the controller never opened its socket";
     const Exit p = run({gyrostab_bin(), "plant", scene_path, "--can-if", can_if(), "--ticks", kTicks, "--can-log", log,
                         "--out", d / "plant"});
     EXPECT_EQ(p.code, 0);
@@ -75,13 +101,24 @@ TEST(CanReplay, GyrostabReplayFindsEveryCommandFrameBitForBitAndCatchesAFlippedB
   // recorded frame is now rejected where the controller sends its frame ⇒ mismatch (4).
   std::string text = read_file(run_.log);
   std::size_t at = 0;
-  for (int n = 0; n <= 150; ++n) at = text.find("vcan0 080##", at + 1);
+  const std::string header = "vcan0 " + hex_id("CONTROLLER_CMD") + "##";
+  for (int n = 0; n <= 150; ++n) at = text.find(header, at + 1);
   ASSERT_NE(at, std::string::npos);
-  const std::size_t byte40 = at + std::string("vcan0 080##5").size() + 2 * 40;
+  const std::size_t byte40 = at + header.size() + 1 + 2 * 40;
   text[byte40] = text[byte40] == '0' ? '1' : '0';
   const std::string flipped = run_.d / "flipped.candump";
   std::ofstream(flipped) << text;
   EXPECT_EQ(run({gyrostab_bin(), "replay", flipped}).code, 4);
+
+  // The log names the map it was recorded with (table and fingerprint): a log of another map is refused (5)
+  // rather than decoded wrongly.
+  std::string other_map = read_file(run_.log);
+  const std::size_t map_line = other_map.find("# can-map legacy ");
+  ASSERT_NE(map_line, std::string::npos) << "the log names its CAN map";
+  other_map[map_line + std::string("# can-map legacy ").size()] ^= 0x01;
+  const std::string remapped = run_.d / "remapped.candump";
+  std::ofstream(remapped) << other_map;
+  EXPECT_EQ(run({gyrostab_bin(), "replay", remapped}).code, 5);
 
   // The log cut after the sensor set of the last tick: the controller's answer is missing ⇒ truncated (5).
   std::string cut = read_file(run_.log);
@@ -97,7 +134,7 @@ TEST(CanReplay, CanplayerDrivesAListeningControllerToTheRecordedCommandFrames) {
   const std::string ctrl_log = run_.d / "controller.candump";
   const pid_t controller = spawn({gyrostab_bin(), "controller", run_.scene_path, "--can-if", can_if(), "--ticks",
                                   kTicks, "--can-log", ctrl_log, "--out", run_.d / "listening"});
-  ASSERT_TRUE(wait_for_can_listener(0x1A0)) << "the controller never opened its socket";
+  ASSERT_TRUE(wait_for_can_listener(id_of("SENSOR_HUB"))) << "the controller never opened its socket";
   // One frame per millisecond (-t -g 1: 5 ms per monorail tick) rather than the recorded 1 kHz bursts: the
   // sanitizer build in the emulated VM fell behind the bursts, lost frames to the full socket queue and went
   // to its safe state. The pacing changes no frame.
@@ -108,9 +145,9 @@ TEST(CanReplay, CanplayerDrivesAListeningControllerToTheRecordedCommandFrames) {
   // The controller drew its own sender id, so the command header's link envelope (sender, freshness, MAC:
   // bytes 44-63, hil/can/frame_map.hpp) and the CRC over it differ from the recording's; every other byte of
   // every command frame must be the recorded one.
-  const auto masked = [](std::vector<std::string> lines) {
+  const std::string header = "vcan0 " + hex_id("CONTROLLER_CMD") + "##";
+  const auto masked = [&header](std::vector<std::string> lines) {
     for (std::string& l : lines) {
-      const std::string header = "vcan0 080##";
       if (l.rfind(header, 0) != 0) continue;
       const std::size_t data = header.size() + 1;  // after the FD flags nibble
       const auto mask_byte = [&](std::size_t b) {

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <thread>
 
+#include "gyrostab_signals/legacy_can.hpp"
 #include "hil/can/candump_log.hpp"
 #include "hil/can/frame_codec.hpp"
 #include "hil/can/socketcan_link.hpp"
@@ -100,7 +101,8 @@ TEST(CanSocket, KernelFilterPassesOnlyOurStandardIds) {
 
 // One tick of the bus: a sensor set and a command set of every node, as the processes send them.
 std::vector<CanFrame> one_tick_of_frames() {
-  can::FrameEncoder se(can::Direction::kSensor, can::kAllNodes), ae(can::Direction::kActuator, can::kAllNodes);
+  const can::DeviceBus bus = can::whole_bus(can::legacy::kCanMap);
+  can::FrameEncoder se(bus, can::Direction::kSensor), ae(bus, can::Direction::kActuator);
   msg::SensorFrame s{};
   s.tick = 42;
   s.carrier_angle_rad[0] = 0.25;

@@ -6,7 +6,13 @@
 // exact to 0.1 us; double rounding of a handful of additions is ~1e-16).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <string>
+
+#include "gyrostab_signals/all_can_maps.hpp"
 #include "hil/can/bus_load.hpp"
+#include "tools/devices/registry.hpp"
+#include "tools/run/can_link_setup.hpp"
 
 namespace gyrostab::can {
 namespace can_bus_load_test {
@@ -33,48 +39,79 @@ TEST(CanBusLoad, FdFrameFieldByField) {
   EXPECT_EQ(fd_frame_bits(16).data, 5 + 128 + 33 + 4 + 17 + 6 + 1);
   // 20 bytes: CRC-21.
   EXPECT_EQ(fd_frame_bits(20).data, 5 + 160 + 41 + 4 + 21 + 7 + 1);
+  // 12 bytes: dynamic stuff floor((21 + 96)/4) − 4 = 25, CRC-17.
+  EXPECT_EQ(fd_frame_bits(12).data, 5 + 96 + 25 + 4 + 17 + 6 + 1);
 }
 
-TEST(CanBusLoad, ShippedDeviceSetsAtOneKilohertz) {
+// The buses of the legacy table's devices, by their descriptors' nodes (the transitional node filter).
+DeviceBus legacy_bus(NodeSet nodes) { return device_bus(legacy::kCanMap, nodes); }
+
+TEST(CanBusLoad, LegacyDeviceSetsAtOneKilohertz) {
   const BusTiming t{1e6, 5e6};
   auto us = [&](std::size_t n) { return 1e6 * frame_time_s(fd_frame_bits(n), t); };
-  // Ship damper / monorail: IMU 64, DRIVE2_FB 32, SENSOR_HUB 64, CONTROLLER_CMD 64, DRIVE2_CMD 20 (the header
-  // frames are 64 bytes since they carry the link envelope).
-  const BusLoad damper = bus_load(kNodeImu | kNodeDrive2, 1000.0, t);
+  // Ship damper / monorail: IMU_FB 64, DRIVE2_FB 32 (angle, rate, current, encoder count as int32),
+  // SENSOR_HUB 64, CONTROLLER_CMD 64, DRIVE2_CMD 20 (the header frames are 64 bytes: the link envelope).
+  const BusLoad damper = bus_load(legacy_bus(kNodeImu | kNodeDrive2), 1000.0, t);
   EXPECT_EQ(damper.frames_per_tick, 5);
   EXPECT_NEAR(damper.busy_s_per_tick * 1e6, us(64) + us(32) + us(64) + us(64) + us(20), 1e-9);
   // Per frame [us] = 33 nominal bits / 1 Mbit/s + data bits / 5 Mbit/s: 64 B 168.8, 48 B 136.8, 32 B 104.8,
-  // 20 B 80.8. Damper: 168.8 + 104.8 + 168.8 + 168.8 + 80.8 = 692.0 us per 1 ms tick.
+  // 20 B 80.8, 12 B 63.8. Damper: 168.8 + 104.8 + 168.8 + 168.8 + 80.8 = 692.0 us per 1 ms tick.
   EXPECT_NEAR(damper.load, 0.6920, 1e-9);
   EXPECT_TRUE(damper.acceptable());
   // Two-axis devices without IMU (power stabilizer, servo gyro): 2·104.8 + 2·168.8 + 2·80.8 = 708.8 us, over
   // the 70 % limit at 1 kHz on a 1/5 Mbit/s bus; with an 8 Mbit/s data phase 2·(33 + 359/8) + 2·(33 + 679/8) +
   // 2·(33 + 239/8) = 517.25 us.
-  const BusLoad two_axis = bus_load(kNodeDrive1 | kNodeDrive2, 1000.0, t);
+  const BusLoad two_axis = bus_load(legacy_bus(kNodeDrive1 | kNodeDrive2), 1000.0, t);
   EXPECT_EQ(two_axis.frames_per_tick, 6);
   EXPECT_NEAR(two_axis.load, 0.7088, 1e-9);
   EXPECT_FALSE(two_axis.acceptable());
-  EXPECT_NEAR(bus_load(kNodeDrive1 | kNodeDrive2, 1000.0, BusTiming{1e6, 8e6}).load, 0.51725, 1e-9);
-  // The CMG cluster (IMU, the cluster's two feedback frames and its command frame of 48 B): 3·168.8 + 3·136.8 =
-  // 916.8 us, refused at 1 kHz on a 1/5 Mbit/s bus; with an 8 Mbit/s data phase 3·(33 + 679/8) + 3·(33 + 519/8)
-  // = 647.25 us.
-  const BusLoad cluster = bus_load(kNodeImu | kNodeCluster, 1000.0, t);
+  EXPECT_NEAR(bus_load(legacy_bus(kNodeDrive1 | kNodeDrive2), 1000.0, BusTiming{1e6, 8e6}).load, 0.51725, 1e-9);
+  // The CMG cluster: IMU_FB 64, the cluster's eight values in CLUSTER_FB (seven doubles, 64 B) and
+  // CLUSTER_FB_2 (one, 12 B), its command frame of four doubles (48 B), and the two headers: 4·168.8 + 63.8 +
+  // 136.8 = 875.8 us, refused at 1 kHz on a 1/5 Mbit/s bus; with an 8 Mbit/s data phase 4·(33 + 679/8) +
+  // (33 + 154/8) + (33 + 519/8) = 621.625 us.
+  const BusLoad cluster = bus_load(legacy_bus(kNodeImu | kNodeCluster), 1000.0, t);
   EXPECT_EQ(cluster.frames_per_tick, 6);
-  EXPECT_NEAR(cluster.load, 0.9168, 1e-9);
+  EXPECT_NEAR(cluster.load, 0.8758, 1e-9);
   EXPECT_FALSE(cluster.acceptable());
-  EXPECT_NEAR(bus_load(kNodeImu | kNodeCluster, 1000.0, BusTiming{1e6, 8e6}).load, 0.64725, 1e-9);
-  // Every node: 877.6 us + the cluster's 3·136.8 = 1288.0 us — refused at 1 kHz on a 1/5 Mbit/s bus.
-  EXPECT_NEAR(bus_load(kAllNodes, 1000.0, t).load, 1.2880, 1e-9);
-  EXPECT_FALSE(bus_load(kAllNodes, 1000.0, t).acceptable());
+  EXPECT_NEAR(bus_load(legacy_bus(kNodeImu | kNodeCluster), 1000.0, BusTiming{1e6, 8e6}).load, 0.621625, 1e-9);
+  // Every node, 10 frames: 64 B ×4 (IMU_FB, CLUSTER_FB, the two headers) 675.2, 32 B ×2 209.6, 20 B ×2
+  // 161.6, 48 B 136.8, 12 B 63.8 = 1247.0 us — refused at 1 kHz on a 1/5 Mbit/s bus.
+  EXPECT_NEAR(bus_load(legacy_bus(kAllNodes), 1000.0, t).load, 1.2470, 1e-9);
+  EXPECT_FALSE(bus_load(legacy_bus(kAllNodes), 1000.0, t).acceptable());
   // The 10 kHz current-loop scene: far beyond any CAN bus.
-  EXPECT_GT(bus_load(kNodeDrive1 | kNodeDrive2, 10000.0, t).load, 6.0);
+  EXPECT_GT(bus_load(legacy_bus(kNodeDrive1 | kNodeDrive2), 10000.0, t).load, 6.0);
+}
+
+// Every shipped device's bus at 1 kHz on the default 1/5 Mbit/s bus (the scenes' own rates: the closed-loop
+// CAN test, tests/hil/can_closed_loop_test.cpp): printed, and each one's load the sum of its frames' times.
+TEST(CanBusLoad, EveryShippedDeviceAtOneKilohertz) {
+  const BusTiming t{1e6, 5e6};
+  std::printf("[ bus load ] device                    map       frames/tick  load at 1 kHz (1/5 Mbit/s)\n");
+  for (const tools::DeviceDescriptor* d : tools::devices()) {
+    const DeviceBus bus = tools::can_bus_of(d->name);
+    const BusLoad b = bus_load(bus, 1000.0, t);
+    double busy = 0.0;
+    int frames = 0;
+    for (std::size_t i = 0; i < bus.messages().size(); ++i) {
+      if (!bus.has(i)) continue;
+      busy += frame_time_s(fd_frame_bits(bus.messages()[i].length), t);
+      ++frames;
+    }
+    EXPECT_EQ(b.frames_per_tick, frames) << d->name;
+    EXPECT_NEAR(b.load, busy * 1000.0, 1e-12) << d->name;
+    EXPECT_GE(b.frames_per_tick, 2) << d->name << ": at least the two headers";
+    std::printf("[ bus load ] %-25s %-9s %11d  %5.1f %%%s\n", std::string(d->name).c_str(),
+                std::string(bus.map->device).c_str(), b.frames_per_tick, 100.0 * b.load,
+                b.acceptable() ? "" : "  (over the 70 % limit at 1 kHz)");
+  }
 }
 
 TEST(CanBusLoad, LoadScalesWithTickRateAndDataBitRate) {
-  const BusLoad a = bus_load(kAllNodes, 500.0, BusTiming{1e6, 5e6});
-  const BusLoad b = bus_load(kAllNodes, 1000.0, BusTiming{1e6, 5e6});
+  const BusLoad a = bus_load(legacy_bus(kAllNodes), 500.0, BusTiming{1e6, 5e6});
+  const BusLoad b = bus_load(legacy_bus(kAllNodes), 1000.0, BusTiming{1e6, 5e6});
   EXPECT_NEAR(b.load, 2.0 * a.load, 1e-12);
-  EXPECT_LT(bus_load(kAllNodes, 1000.0, BusTiming{1e6, 8e6}).load, b.load);
+  EXPECT_LT(bus_load(legacy_bus(kAllNodes), 1000.0, BusTiming{1e6, 8e6}).load, b.load);
 }
 
 }  // namespace can_bus_load_test

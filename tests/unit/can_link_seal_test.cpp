@@ -7,6 +7,7 @@
 #include <optional>
 #include <span>
 
+#include "gyrostab_signals/legacy_can.hpp"
 #include "hil/can/frame_codec.hpp"
 #include "hil/can/link_seal.hpp"
 #include "hil/link/frame_endpoint.hpp"
@@ -18,7 +19,8 @@ using hil::GuardVerdict;
 using hil::LinkEnvelope;
 using hil::LinkGuard;
 
-constexpr NodeSet kNodes = kNodeImu | kNodeDrive2;
+// A ship damper's bus: the legacy map's IMU, drive 2 and the headers.
+constexpr DeviceBus kBus = device_bus(legacy::kCanMap, kNodeImu | kNodeDrive2);
 constexpr std::uint64_t kSession = 0x1a2b3c4d;
 constexpr std::uint64_t kControllerId = 0x0c0ffee1;
 
@@ -79,7 +81,7 @@ struct Receiver {
     return v;
   }
   LinkGuard guard;
-  SetAssembler rx{Direction::kSensor, kNodes};
+  SetAssembler rx{kBus, Direction::kSensor};
 };
 
 // A copy of `genuine` whose first body frame (the IMU's) is `foreign`'s, with the genuine frame's alive counter
@@ -93,13 +95,13 @@ Set mixed(const Set& genuine, const Set& foreign) {
 }
 
 TEST(CanLinkSeal, TheHeaderCarriesTheEnvelopeAndTheSetPassesTheDecoder) {
-  FrameEncoder bus(Direction::kSensor, kNodes);
+  FrameEncoder bus(kBus, Direction::kSensor);
   Sender plant(bus, kSession);
   Set s{};
   const std::size_t n = plant.make(0, 0.01, s);
   ASSERT_EQ(n, 3u);
   const CanFrame& h = s[n - 1];
-  EXPECT_EQ(h.id, 0x1A0u);
+  EXPECT_EQ(h.id, 0x2FFu) << "SENSOR_HUB";
   EXPECT_EQ(h.len, kHeaderLength);
   const LinkEnvelope e = read_link_envelope(h);
   EXPECT_EQ(e.sender, kSession);
@@ -117,7 +119,7 @@ TEST(CanLinkSeal, TheHeaderCarriesTheEnvelopeAndTheSetPassesTheDecoder) {
 }
 
 TEST(CanLinkSeal, WithoutAKeyAnotherSessionARecordingAndAMixedSetAreRefused) {
-  FrameEncoder bus(Direction::kSensor, kNodes);
+  FrameEncoder bus(kBus, Direction::kSensor);
   Sender plant(bus, kSession), other(bus, kSession + 7), recording(bus, 0), copier(bus, kSession);
   Receiver controller;
   Set s{};
@@ -151,7 +153,7 @@ TEST(CanLinkSeal, WithoutAKeyAnotherSessionARecordingAndAMixedSetAreRefused) {
 
 TEST(CanLinkSeal, WithAKeyAForgeryAMixedSetAndAReplayAreRefused) {
   const firmware::link::Key128 k = key(0x3c), wrong = key(0x3d);
-  FrameEncoder bus(Direction::kSensor, kNodes);
+  FrameEncoder bus(kBus, Direction::kSensor);
   Sender plant(bus, kSession, k), forger(bus, kSession, wrong), copier(bus, kSession, wrong);
   Receiver controller(k);
   Set s{};
@@ -161,7 +163,7 @@ TEST(CanLinkSeal, WithAKeyAForgeryAMixedSetAndAReplayAreRefused) {
 
   // The forger's freshness must be newer than the last accepted one, or it is refused as a replay before
   // its MAC is checked: it has sealed a set of its own before.
-  FrameEncoder scratch(Direction::kSensor, kNodes);
+  FrameEncoder scratch(kBus, Direction::kSensor);
   Set junk{};
   forger.make(0, 0.0, junk, &scratch);
   n = forger.make(1, 0.5, s);

@@ -1,5 +1,6 @@
-// The interface contract (firmware/msg/): the layout the transports (LCM, CAN) and logs rely on. A failure
-// here means the wire format changed: update the LCM types, the CAN frame map and the DBC file with it.
+// The interface contract (firmware/msg/): the layout the transports (LCM, CAN) and logs rely on — the shared
+// legacy table's typed frames (firmware/msg/legacy_signals.toml; the LCM types, CAN maps and DBC files are
+// generated from the same table). A failure here means the wire format changed.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -37,7 +38,7 @@ TEST(Contract, FramesAreTriviallyCopyableStandardLayoutAggregates) {
 }
 
 TEST(Contract, SensorFrameHasTheWireLayout) {
-  EXPECT_EQ(sizeof(SensorFrame), 208u);
+  EXPECT_EQ(sizeof(SensorFrame), 216u);
   EXPECT_EQ(alignof(SensorFrame), 8u);
   EXPECT_EQ(offsetof(SensorFrame, tick), 0u);
   EXPECT_EQ(offsetof(SensorFrame, time_ns), 8u);
@@ -50,9 +51,11 @@ TEST(Contract, SensorFrameHasTheWireLayout) {
   EXPECT_EQ(offsetof(SensorFrame, gimbal_rate_rad_s), 96u);
   EXPECT_EQ(offsetof(SensorFrame, motor_current_A), 112u);
   EXPECT_EQ(offsetof(SensorFrame, rotor_speed_rad_s), 128u);
+  // Encoder counts are doubles in the frame like every value (integers, exact; on CAN they ride as int32).
   EXPECT_EQ(offsetof(SensorFrame, encoder_count), 136u);
-  EXPECT_EQ(offsetof(SensorFrame, cluster_gimbal_angle_rad), 144u);
-  EXPECT_EQ(offsetof(SensorFrame, cluster_gimbal_rate_rad_s), 176u);
+  EXPECT_EQ(sizeof(SensorFrame::encoder_count), 16u);
+  EXPECT_EQ(offsetof(SensorFrame, cluster_gimbal_angle_rad), 152u);
+  EXPECT_EQ(offsetof(SensorFrame, cluster_gimbal_rate_rad_s), 184u);
 }
 
 TEST(Contract, ActuatorFrameHasTheWireLayout) {

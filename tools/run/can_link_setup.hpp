@@ -1,13 +1,16 @@
 // Opening the CAN link of a plant or controller process (`gyrostab plant|controller SCENE --can-if IF`,
 // `gyrostab run SCENE --transport can`; docs/can.md):
-//   1. the device's nodes on the bus (its descriptor's can_nodes: the hardware each device has);
+//   1. the device's bus: the CAN map generated from its signal table (tools/signals/device_can_map.hpp); a
+//      device still on the shared legacy table carries only the frames of the nodes its hardware has (its
+//      descriptor's can_nodes; transitional, deleted with the legacy table);
 //   2. the bus-load check: one sensor set and one command set per controller tick, worst-case bit stuffing, at
 //      the configured bit rates (default 1 Mbit/s arbitration, 5 Mbit/s data); above 70 % the scene is refused
 //      (exit 2) with the numbers, before anything is sent;
 //   3. the SocketCAN socket on IF (CAN FD, kernel filter on the ids this side receives unless --can-no-filter,
 //      error frames, kernel timestamps);
 //   4. with --can-log FILE, the candump log, headed by comment lines that name the scene, its device, seed,
-//      tick and nodes and carry the scene text (base64) so that `gyrostab replay FILE` needs nothing else.
+//      tick, the map (its table and fingerprint) and nodes, and carry the scene text (base64) so that
+//      `gyrostab replay FILE` needs nothing else.
 // Start-up only (allocates); the loop then runs through hil::FrameEndpoint<can::CanBusTransport>
 // (hil/can/can_endpoint.hpp).
 #pragma once
@@ -21,20 +24,26 @@
 #include <nlohmann/json.hpp>
 
 #include "hil/can/bus_load.hpp"
+#include "hil/can/bus_nodes.hpp"
 #include "hil/can/can_endpoint.hpp"
 #include "hil/can/frame_map.hpp"
 #include "tools/devices/registry.hpp"
 #include "tools/run/run_output.hpp"
+#include "tools/signals/device_can_map.hpp"
 
 namespace gyrostab::tools {
 
-inline std::string node_list(can::NodeSet n) {
-  std::string s = "sensor_hub, controller";
-  if (n & can::kNodeImu) s += ", imu";
-  if (n & can::kNodeDrive1) s += ", drive1";
-  if (n & can::kNodeDrive2) s += ", drive2";
-  if (n & can::kNodeCluster) s += ", cluster";
-  return s;
+// The frames a device's bus carries: its map, and for a device on the legacy table (transitional) only the
+// frames of the nodes its descriptor lists.
+inline can::DeviceBus can_bus_of(std::string_view device) {
+  return can::device_bus(find_device_can_map(device), can_nodes_of(device));
+}
+
+// The "can-map" header line of a candump log: the table the map was generated from and its fingerprint.
+inline std::string can_map_text(const can::CanMap& m) {
+  char fp[24];
+  std::snprintf(fp, sizeof fp, "%016llx", static_cast<unsigned long long>(m.fingerprint));
+  return std::string(m.device) + " " + fp;
 }
 
 inline std::string base64(const std::string& in) {
@@ -62,17 +71,17 @@ inline std::string base64(const std::string& in) {
 
 // The bus load of a scene's device at its tick rate; "" if acceptable, else the refusal message.
 inline std::string can_bus_load_problem(const LoopConfig& loop, const TransportOptions& t, can::BusLoad& load) {
-  const can::NodeSet nodes = can_nodes_of(loop.device);
+  const can::DeviceBus bus = can_bus_of(loop.device);
   const can::BusTiming timing{t.can_bitrate, t.can_data_bitrate};
   const double rate_hz = 1e9 / static_cast<double>(loop.tick_ns);
-  load = can::bus_load(nodes, rate_hz, timing);
+  load = can::bus_load(bus, rate_hz, timing);
   if (load.acceptable()) return "";
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "bus load %.1f %% exceeds the %.0f %% limit: %d CAN FD frames per tick (nodes %s) at %.0f Hz on a "
                 "%.0f/%.0f Mbit/s bus need %.1f us of every %.1f us tick (worst-case bit stuffing). Lower the tick "
                 "rate, or raise --can-data-bitrate if the transceivers allow it (docs/can.md)",
-                100.0 * load.load, 100.0 * can::kMaxBusLoad, load.frames_per_tick, node_list(nodes).c_str(), rate_hz,
+                100.0 * load.load, 100.0 * can::kMaxBusLoad, load.frames_per_tick, can::bus_node_list(bus).c_str(), rate_hz,
                 timing.nominal_bitrate * 1e-6, timing.data_bitrate * 1e-6, load.busy_s_per_tick * 1e6,
                 1e6 / rate_hz);
   return buf;
@@ -93,7 +102,7 @@ inline int open_can_link(can::CanBusTransport& bus, const LoopConfig& loop, cons
     return 2;
   }
   bus.ifname = t.can_if;
-  bus.nodes = can_nodes_of(loop.device);
+  bus.bus = can_bus_of(loop.device);
   bus.tick_ns = loop.tick_ns;
   bus.real_time = t.real_time;
   bus.timing = can::BusTiming{t.can_bitrate, t.can_data_bitrate};
@@ -102,8 +111,8 @@ inline int open_can_link(can::CanBusTransport& bus, const LoopConfig& loop, cons
   can::SocketCanConfig config;
   config.ifname = t.can_if;
   std::vector<std::uint32_t> ids;
-  for (const can::MessageSpec& m : can::kMessages)
-    if (m.direction == rx && can::message_present(m, bus.nodes)) ids.push_back(m.id);
+  for (std::size_t i = 0; i < bus.bus.messages().size(); ++i)
+    if (bus.bus.messages()[i].direction == rx && bus.bus.has(i)) ids.push_back(bus.bus.messages()[i].id);
   if (t.can_filter) config.receive_ids = ids;
   std::string error;
   if (!bus.socket.open(config, error)) {
@@ -119,13 +128,15 @@ inline int open_can_link(can::CanBusTransport& bus, const LoopConfig& loop, cons
       text = s.str();
     }
     std::vector<std::string> header = {
-        "gyrostab-candump 1",
+        "gyrostab-candump 2",
         std::string("role ") + (plant_side ? "plant" : "controller"),
         "scene " + loop.name,
         "device " + loop.device,
         "seed " + std::to_string(loop.seed),
         "tick_ns " + std::to_string(loop.tick_ns),
-        "nodes " + std::to_string(static_cast<int>(bus.nodes)) + " (" + node_list(bus.nodes) + ")",
+        "can-map " + can_map_text(*bus.bus.map),
+        "nodes " + std::to_string(static_cast<int>(can_nodes_of(loop.device))) + " (" + can::bus_node_list(bus.bus) +
+            ")",
         std::string("clock ") + (t.real_time ? "realtime" : "simulated"),
     };
     const std::string b64 = base64(text);

@@ -33,14 +33,38 @@ int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop
     std::fprintf(stderr, "gyrostab: %s: note: --scene differs from the recorded scene:%s\n", path.c_str(),
                  differs.c_str());
   }
+  // The frames are decoded with the map of the scene's device: the one the log was recorded with, or the log is
+  // refused (its identifiers and positions would mean something else).
+  const can::CanMap& map = find_device_can_map(loop.device);
+  const std::string version = candump_header(file, "gyrostab-candump");
+  if (!version.empty() && version != "2") {
+    std::fprintf(stderr, "gyrostab: %s: a gyrostab candump log of version %s, recorded with another CAN map "
+                 "(this build writes and replays version 2, its maps generated from the signal tables): record "
+                 "it again\n", path.c_str(), version.c_str());
+    return kReplayExitBadLog;
+  }
+  if (const std::string recorded = candump_header(file, "can-map");
+      !recorded.empty() && recorded != can_map_text(map)) {
+    std::fprintf(stderr, "gyrostab: %s: recorded with the CAN map '%s', but device %s's map in this build is "
+                 "'%s' (table and fingerprint): its frames would be decoded wrongly; record it again\n",
+                 path.c_str(), recorded.c_str(), loop.device.c_str(), can_map_text(map).c_str());
+    return kReplayExitBadLog;
+  }
+  // Transitional (legacy table): the nodes the recording's device had, else its descriptor's.
   can::NodeSet nodes = can_nodes_of(loop.device);
   if (const std::string n = candump_header(file, "nodes"); !n.empty()) {
     nodes = static_cast<can::NodeSet>(std::atoi(n.c_str()) & can::kAllNodes);
   }
+  const can::DeviceBus bus = can::device_bus(map, nodes);
+  if (map.signals->device != signals.device) {
+    std::fprintf(stderr, "gyrostab: %s: device %s's CAN map carries the frames of table %s, not %s\n", path.c_str(),
+                 loop.device.c_str(), std::string(map.signals->device).c_str(), std::string(signals.device).c_str());
+    return kReplayExitBadLog;
+  }
 
-  can::SetAssembler sensors(can::Direction::kSensor, nodes);
-  can::SetAssembler commands(can::Direction::kActuator, nodes);
-  can::FrameEncoder encoder(can::Direction::kActuator, nodes);
+  can::SetAssembler sensors(bus, can::Direction::kSensor);
+  can::SetAssembler commands(bus, can::Direction::kActuator);
+  can::FrameEncoder encoder(bus, can::Direction::kActuator);
   std::deque<can::CanFrame> due;  // the controller's frames not yet matched against the log
   std::array<can::CanFrame, can::kMaxMessagesPerDirection> tx{};
   msg::AnySensorFrame sensor{};
@@ -55,12 +79,12 @@ int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop
     return n > 0;
   };
   const auto sensor_id = [&](std::uint32_t id) {
-    const int i = can::message_index(id);
-    return i >= 0 && can::kMessages[static_cast<std::size_t>(i)].direction == can::Direction::kSensor;
+    const int i = bus.index_of(id);
+    return i >= 0 && bus.messages()[static_cast<std::size_t>(i)].direction == can::Direction::kSensor;
   };
   for (const can::CandumpRecord& r : file.frames) {
     const can::CanFrame& f = r.frame;
-    const bool command_id = !(f.flags & (can::kFlagError | can::kFlagExtended)) && can::message_index(f.id) >= 0 &&
+    const bool command_id = !(f.flags & (can::kFlagError | can::kFlagExtended)) && bus.index_of(f.id) >= 0 &&
                             !sensor_id(f.id);
     if (!command_id) {
       if (sensors.accept(f) != can::FrameError::kNone) {
@@ -88,8 +112,8 @@ int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop
       last_tick = k;
       ++ticks;
       if (!push_encoded(out)) {
-        std::fprintf(stderr, "gyrostab: %s: the controller's command for tick %lld sets a field no CAN node of "
-                     "this device carries\n", path.c_str(), static_cast<long long>(k));
+        std::fprintf(stderr, "gyrostab: %s: the controller's command for tick %lld has a value the device's CAN "
+                     "bus cannot carry exactly\n", path.c_str(), static_cast<long long>(k));
         return kReplayExitMismatch;
       }
       continue;
@@ -119,8 +143,8 @@ int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop
     // The header's link envelope (sender, session, freshness, MAC) is the recorded run's, drawn at its start,
     // not something the controller computes from the log: taken from the recorded frame. Everything else,
     // the CRC over it included, must match bit for bit.
-    if (const int i = can::message_index(want.id); i >= 0 && can::kMessages[static_cast<std::size_t>(i)].header &&
-                                                   f.len == want.len) {
+    if (const int i = bus.index_of(want.id); i >= 0 && bus.messages()[static_cast<std::size_t>(i)].header &&
+                                             f.len == want.len) {
       can::write_link_envelope(want, can::read_link_envelope(f));
     }
     const bool same = want.id == f.id && want.len == f.len &&

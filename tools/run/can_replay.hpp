@@ -8,9 +8,12 @@
 // Frames the decoder rejects (a flood, bad frames of a fault test) are counted and skipped, as the controller
 // skipped them; a rejected frame where the controller's own frame is due is a mismatch.
 // The scene: --scene, or the one in the log's header (`# scene-toml-base64` lines, written by --can-log).
+// The frames are decoded with the CAN map of the scene's device (tools/signals/device_can_map.hpp); a log whose
+// header names another map (`# can-map TABLE FINGERPRINT`) or log version is refused, since its identifiers
+// and positions would mean something else.
 // Exit codes as for LCM logs (replay_session.hpp): 0 identical, 4 mismatch (line and fields printed),
 // 5 the log is unreadable past a line, or ends before the controller's answer to its last sensor set, or its
-// header disagrees with the scene, 2 nothing replayed.
+// header disagrees with the scene or names another map, 2 nothing replayed.
 #pragma once
 
 #include <time.h>

@@ -11,9 +11,15 @@ The table is TOML (docs/adding-a-device.md, docs/signals.md):
     symbol = "φ"                             # the book's symbol
     unit = "rad"                             # SI unit; "-" for a ratio, "counts", "bits"
     range = [-3.141592653589793, 3.141592653589793]   # plausible range (the fault monitor's default)
-    node = "imu"                             # the CAN node that measures it
+    node = "imu"                             # the CAN node that measures it; for an array, one node for all
+                                             # elements or a list of one node per element: ["drive1", "drive2"]
     description = "..."
     count = 4                                # optional: an array of this many elements (unit i at index i-1)
+    can = "int32"                            # optional: how the value rides on the CAN bus (can_layout.py):
+                                             # "double" (default, the IEEE-754 bits as they are) or, for a
+                                             # value that is always an integer (an encoder count), "int8",
+                                             # "int16", "int32", "uint8", "uint16", "uint32": exact, and the
+                                             # encoder refuses a value that is not an integer of that type
 
     [[command]]                              # controller -> plant, in frame order
     name = "motor_torque_Nm"
@@ -48,13 +54,27 @@ from pathlib import Path
 
 IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 DEVICE = re.compile(r"^[a-z][a-z0-9_]*$")
-# The CAN nodes a signal can sit on (hil/can/frame_map.hpp): the sensor hub and the controller always exist.
+# The CAN nodes a signal can sit on (can_layout.py, docs/can.md): the sensor hub and the controller always exist.
 SENSOR_NODES = ("sensor_hub", "imu", "drive1", "drive2", "cluster")
 COMMAND_NODES = ("controller", "drive1", "drive2", "cluster")
+# How a value can ride on the CAN bus: the double's bits (default), or an integer type for a value that is
+# always an integer: bits and signedness.
+CAN_DOUBLE = "double"
+CAN_INTEGER_TYPES = {
+    "int8": (8, True), "int16": (16, True), "int32": (32, True),
+    "uint8": (8, False), "uint16": (16, False), "uint32": (32, False),
+}
+
+
+def can_integer_range(can: str) -> tuple[int, int]:
+    """The values an integer CAN type holds: [min, max]."""
+    bits, signed = CAN_INTEGER_TYPES[can]
+    return (-(1 << (bits - 1)), (1 << (bits - 1)) - 1) if signed else (0, (1 << bits) - 1)
 # Field names of the fixed headers and envelopes: a signal may not shadow them.
 RESERVED = {
     "tick", "time_ns", "sample_time_ns", "sensor_tick", "sequence", "status", "sim_time_us", "sender",
-    "session", "freshness", "mac", "t_s",
+    "session", "freshness", "mac", "scene", "t_s",
+    "count",  # the generated SensorIndex/CommandIndex's number of values
 }
 MAX_SENSOR_VALUES = 32
 MAX_COMMAND_VALUES = 16
@@ -71,10 +91,16 @@ class Signal:
     unit: str
     lo: float
     hi: float
-    node: str
+    nodes: list[str]  # the CAN node of each element (count entries)
     description: str
     count: int = 1
     safe: float = 0.0
+    can: str = CAN_DOUBLE  # how each element rides on the CAN bus: "double" or a CAN_INTEGER_TYPES key
+
+    @property
+    def node(self) -> str:
+        """The node of every element, or the elements' nodes joined by ", " when they differ (for text)."""
+        return self.nodes[0] if len(set(self.nodes)) == 1 else ", ".join(self.nodes)
 
 
 @dataclass
@@ -146,12 +172,43 @@ def _ident(name: str, where: str) -> str:
         raise TableError(f"{where}: name '{name}' is not a snake_case identifier of at most 48 characters "
                          "(letters, digits, '_'; a unit suffix such as _rad, _Nm, _rad_s may use capitals)")
     if name in RESERVED:
-        raise TableError(f"{where}: name '{name}' is a header or envelope field")
+        raise TableError(f"{where}: name '{name}' is a header or envelope field, or a generated name")
     return name
 
 
+def _nodes(d: dict, where: str, nodes: tuple[str, ...], count: int) -> list[str]:
+    if "node" not in d:
+        raise TableError(f"{where}: missing key 'node'")
+    v = d["node"]
+    if isinstance(v, str):
+        v = [v] * count
+    elif isinstance(v, list) and all(isinstance(x, str) for x in v):
+        if len(v) != count:
+            raise TableError(f"{where}: 'node' lists {len(v)} nodes for {count} element(s): one node, or one per "
+                             "element")
+    else:
+        raise TableError(f"{where}: 'node' must be a node name or a list of one per element")
+    for n in v:
+        if n not in nodes:
+            raise TableError(f"{where}: node '{n}' is not one of {', '.join(nodes)}")
+    return list(v)
+
+
+def _can(d: dict, where: str, lo: float, hi: float) -> str:
+    can = d.get("can", CAN_DOUBLE)
+    if not isinstance(can, str) or (can != CAN_DOUBLE and can not in CAN_INTEGER_TYPES):
+        raise TableError(f"{where}: 'can' must be one of {CAN_DOUBLE}, {', '.join(CAN_INTEGER_TYPES)}")
+    if can != CAN_DOUBLE:
+        tmin, tmax = can_integer_range(can)
+        if lo < tmin or hi > tmax:
+            raise TableError(f"{where}: the range [{lo}, {hi}] does not fit '{can}' ([{tmin}, {tmax}]): a "
+                             "plausible value must travel exactly")
+    return can
+
+
 def _signal(d: dict, where: str, nodes: tuple[str, ...], command: bool) -> Signal:
-    allowed = {"name", "symbol", "unit", "range", "node", "description", "count"} | ({"safe"} if command else set())
+    allowed = {"name", "symbol", "unit", "range", "node", "description", "count", "can"} | (
+        {"safe"} if command else set())
     _no_unknown(d, allowed, where)
     name = _ident(_text(d, "name", where), where)
     where = f"{where} ({name})"
@@ -161,19 +218,21 @@ def _signal(d: dict, where: str, nodes: tuple[str, ...], command: bool) -> Signa
     lo, hi = float(rng[0]), float(rng[1])
     if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
         raise TableError(f"{where}: 'range' must be finite with min < max, not [{lo}, {hi}]")
-    node = _text(d, "node", where)
-    if node not in nodes:
-        raise TableError(f"{where}: node '{node}' is not one of {', '.join(nodes)}")
     count = d.get("count", 1)
     if not isinstance(count, int) or isinstance(count, bool) or not 1 <= count <= 8:
         raise TableError(f"{where}: 'count' must be an integer in [1, 8]")
+    node_list = _nodes(d, where, nodes, count)
+    can = _can(d, where, lo, hi)
     safe = 0.0
     if command:
         safe = _need(d, "safe", float, where)
         if not lo <= safe <= hi:
             raise TableError(f"{where}: the safe value {safe} is outside its range [{lo}, {hi}]")
-    return Signal(name, _text(d, "symbol", where), _text(d, "unit", where), lo, hi, node,
-                  _text(d, "description", where), count, safe)
+        if can != CAN_DOUBLE and (safe != int(safe) or math.copysign(1.0, safe) < 0.0 and safe == 0.0):
+            raise TableError(f"{where}: the safe value {safe} is not an integer that 'can = \"{can}\"' carries "
+                             "exactly")
+    return Signal(name, _text(d, "symbol", where), _text(d, "unit", where), lo, hi, node_list,
+                  _text(d, "description", where), count, safe, can)
 
 
 def _column(d: dict, where: str) -> Column:
