@@ -9,6 +9,7 @@
 #include "tools/accuracy/accuracy_command.hpp"
 #include "tools/commands.hpp"
 #include "tools/demo_gimbal_gyro.hpp"
+#include "tools/log/bus_log_export.hpp"
 #include "tools/motion_record_command.hpp"
 #include "tools/replay_command.hpp"
 #include "tools/run/link_cli.hpp"
@@ -63,8 +64,12 @@ bool refuse_unknown_subcommand(CLI::App& app, int argc, char** argv) {
 // --mcap and --view: the run as an MCAP file, and its live view in the browser.
 CLI::Option* add_live_options(CLI::App* cmd, gyrostab::tools::RunRequest& r) {
   cmd->add_option("--mcap", r.mcap_path,
-                  "also write the run as an MCAP file (recorded signals and report; Foxglove, Lichtblick, "
-                  "PlotJuggler; docs/mcap.md)");
+                  "also write the run as an MCAP file (recorded signals, sensor and actuator frames, report; "
+                  "Foxglove, Lichtblick, PlotJuggler; docs/mcap.md)");
+  cmd->add_option("--mcap-frames-every", r.mcap_frames_every,
+                  "with --mcap: the frame channels hold every N-th tick's frames (default: the recorded rows' "
+                  "ticks, [output] record_every; 1: every tick; 0: no frame channels)")
+      ->check(CLI::NonNegativeNumber);
   CLI::Option* view = cmd->add_option("--view", r.view.address,
                                       "serve a live view of the run in the browser at [ADDR:PORT] (default "
                                       "127.0.0.1 on a free port; the URL with its token is printed; docs/view.md)")
@@ -117,6 +122,8 @@ int main(int argc, char** argv) {
   plant_cmd->add_option("--log", plant.transport.log_path, "record the bus as an LCM event log (docs/logs.md)");
   gyrostab::tools::add_link_options(plant_cmd, plant, gyrostab::tools::LinkSide::kPlant);
   CLI::Option* plant_view = add_live_options(plant_cmd, plant);
+  // For `run --transport lcm|can --mcap`: the frames beside signals.csv, for the parent's MCAP file.
+  plant_cmd->add_flag("--mcap-frames-csv", plant.mcap_frames_csv)->group("");
   gyrostab::tools::RunRequest controller;
   controller.role = gyrostab::tools::Role::kController;
   controller.progress = false;
@@ -209,6 +216,16 @@ int main(int argc, char** argv) {
   record_cmd->add_option("--duration-s", record.duration_s,
                          "span recorded [s] (default: the scene's duration_s; longer lets --ticks run past it)");
 
+  // MCAP from a bus log (docs/mcap.md).
+  gyrostab::tools::ExportRequest export_req;
+  CLI::App* export_cmd = app.add_subcommand(
+      "export", "write a bus log (gyrostab run --log) as an MCAP file for Foxglove, Lichtblick, PlotJuggler "
+                "(exit 0 complete, 5 the log is cut or damaged: what it held before is written; docs/mcap.md)");
+  export_cmd->add_option("log", export_req.log_path, "bus log (gyrostab run --log)")->required()->check(CLI::ExistingFile);
+  export_cmd->add_option("--mcap", export_req.mcap_path, "the MCAP file to write")->required();
+  export_cmd->add_option("--every", export_req.every, "the frames of every N-th tick (default 1: every tick)")
+      ->check(CLI::PositiveNumber);
+
   CLI::App* keys_cmd =
       app.add_subcommand("scene-keys", "print docs/scenes.md: every scene key of every device, from the field tables");
 
@@ -218,6 +235,7 @@ int main(int argc, char** argv) {
   plant.view.enabled = plant_view->count() > 0;
   sweep.view = sweep_view->count() > 0;
   if (record_cmd->parsed()) return gyrostab::tools::motion_record(record);
+  if (export_cmd->parsed()) return gyrostab::tools::export_log(export_req);
   if (keys_cmd->parsed()) {
     std::fputs(gyrostab::tools::scenes_markdown().c_str(), stdout);
     return 0;
