@@ -17,6 +17,8 @@
 #include "tools/scene/scene_keys.hpp"
 #include "tools/sweep/merge.hpp"
 #include "tools/sweep/sweep_command.hpp"
+#include "tools/view/lcm_view.hpp"
+#include "hil/lcm/lcm_transport.hpp"
 #include "hil/can/dbc_writer.hpp"
 
 #ifndef GYROSTAB_VERSION
@@ -216,6 +218,31 @@ int main(int argc, char** argv) {
   record_cmd->add_option("--duration-s", record.duration_s,
                          "span recorded [s] (default: the scene's duration_s; longer lets --ticks run past it)");
 
+  // The live view of a running bus, heard by a passive listener (docs/view.md).
+  gyrostab::tools::view::LcmViewRequest lcm_view;
+  lcm_view.url = gyrostab::hil::kDefaultLcmUrl;
+  CLI::App* view_cmd = app.add_subcommand(
+      "view", "serve a live view of a running plant/controller bus, heard by a listener that never sends "
+              "(frames, their signals, status and safe state; docs/view.md)");
+  view_cmd->add_option("--lcm-url", lcm_view.url, "the bus (udpm://GROUP:PORT, LCM's form)");
+  view_cmd->add_option("--key-file", lcm_view.key_file,
+                       "the link's key: show only frames whose MAC verifies (without it, frames are shown marked "
+                       "as not authenticated)")
+      ->check(CLI::ExistingFile);
+  CLI::Option* view_suffix = view_cmd->add_option(
+      "--channel-suffix", lcm_view.channel_suffix,
+      "listen to GYROSTAB_SENSOR<S> and GYROSTAB_ACTUATOR<S> (default: the suffix of the first frame heard)");
+  view_cmd->add_option("--scene", lcm_view.scene_path,
+                       "the scene that runs on the bus: its device, length, tick and limits (default: the device "
+                       "from the first frame's type)")
+      ->check(CLI::ExistingFile);
+  view_cmd->add_option("--ticks", lcm_view.ticks, "with --scene: the run's length in ticks")
+      ->check(CLI::NonNegativeNumber);
+  view_cmd->add_option("--view", lcm_view.view_address,
+                       "serve at ADDR:PORT (default 127.0.0.1 on a free port; the URL with its token is printed)");
+  view_cmd->add_option("--idle-exit", lcm_view.idle_exit_s,
+                       "exit once frames came and none for this long [s] (default: run until Ctrl-C)");
+
   // MCAP from a bus log (docs/mcap.md).
   gyrostab::tools::ExportRequest export_req;
   CLI::App* export_cmd = app.add_subcommand(
@@ -235,6 +262,10 @@ int main(int argc, char** argv) {
   plant.view.enabled = plant_view->count() > 0;
   sweep.view = sweep_view->count() > 0;
   if (record_cmd->parsed()) return gyrostab::tools::motion_record(record);
+  if (view_cmd->parsed()) {
+    lcm_view.suffix_given = view_suffix->count() > 0;
+    return gyrostab::tools::view::run_lcm_view(lcm_view);
+  }
   if (export_cmd->parsed()) return gyrostab::tools::export_log(export_req);
   if (keys_cmd->parsed()) {
     std::fputs(gyrostab::tools::scenes_markdown().c_str(), stdout);
