@@ -66,6 +66,13 @@ function treeCpu(root) {
   return total;
 }
 
+// The ratio of each repeat's run to the same repeat's run without the view (runs adjacent in time, so a load that
+// drifts over the bench moves both): median and min–max over the repeats.
+function paired(a, base) {
+  const r = a.map((x, i) => x / base[i]);
+  return `per-repeat ratio median ${median(r).toFixed(4)} (min–max ${Math.min(...r).toFixed(4)}–${Math.max(...r).toFixed(4)})`;
+}
+
 const median = (v) => { const s = [...v].sort((a, b) => a - b); const n = s.length; return n % 2 ? s[(n - 1) / 2] : (s[n / 2 - 1] + s[n / 2]) / 2; };
 const spread = (v, d = 0) => `${Math.min(...v).toFixed(d)}–${Math.max(...v).toFixed(d)}`;
 
@@ -115,8 +122,8 @@ async function inProcess(bin, scene, ticks, repeats, work) {
   console.log(`without --view:            median ${m.without.toFixed(0)} ticks/s (min–max ${spread(tps.without)})`);
   console.log(`with --view, no page:      median ${m.view.toFixed(0)} ticks/s (min–max ${spread(tps.view)})`);
   console.log(`with --view and a browser: median ${m.page.toFixed(0)} ticks/s (min–max ${spread(tps.page)})`);
-  console.log(`ratio of medians, --view without a page: ${(m.view / m.without).toFixed(4)} (cost ${(100 * (1 - m.view / m.without)).toFixed(2)} %)`);
-  console.log(`ratio of medians, --view with a browser: ${(m.page / m.without).toFixed(4)} (cost ${(100 * (1 - m.page / m.without)).toFixed(2)} %)`);
+  console.log(`ratio of medians, --view without a page: ${(m.view / m.without).toFixed(4)} (cost ${(100 * (1 - m.view / m.without)).toFixed(2)} %); ${paired(tps.view, tps.without)}`);
+  console.log(`ratio of medians, --view with a browser: ${(m.page / m.without).toFixed(4)} (cost ${(100 * (1 - m.page / m.without)).toFixed(2)} %); ${paired(tps.page, tps.without)}`);
   const c = Object.fromEntries(modes.map((k) => [k, median(cpu[k])]));
   console.log(`the loop thread's own CPU time (ticks per CPU second, medians; min–max): without ${c.without.toFixed(0)} ` +
               `(${spread(cpu.without)}), --view without a page ${c.view.toFixed(0)} (${spread(cpu.view)}), with a browser ` +
@@ -192,7 +199,7 @@ async function overLcm(bin, scene, ticks, repeats, work) {
   const what = { without: "without a view", view_page: "run --view, a browser on it", listener: "gyrostab view, no page",
                  listener_page: "gyrostab view, a browser on it" };
   for (const k of modes) console.log(`${what[k].padEnd(32)} median ${m[k].toFixed(0)} ticks/s (min–max ${spread(tps[k])})` +
-                                     (k === "without" ? "" : `; ratio ${(m[k] / m.without).toFixed(4)} (cost ${(100 * (1 - m[k] / m.without)).toFixed(2)} %)`));
+                                     (k === "without" ? "" : `; ratio ${(m[k] / m.without).toFixed(4)} (cost ${(100 * (1 - m[k] / m.without)).toFixed(2)} %); ${paired(tps[k], tps.without)}`));
   const c = Object.fromEntries(modes.map((k) => [k, median(loopCpu[k])]));
   console.log(`the plant's and the controller's processes' CPU (user + system) per million ticks, medians (min–max): ` +
               modes.map((k) => `${what[k]} ${c[k].toFixed(1)} s (${spread(loopCpu[k], 1)})` + (k === "without" ? "" : ` ratio ${(c[k] / c.without).toFixed(3)}`)).join("; "));

@@ -213,12 +213,10 @@ function draw() {
     const v = latest ? latest.values[c.index] : null;
     c.value.textContent = fmt(v) + (c.signal.unit && c.signal.unit !== "-" ? " " + c.signal.unit : "");
     const d = c.plot.scales.y;
-    const peak = d.max === undefined ? 0 : Math.max(Math.abs(d.min), Math.abs(d.max));
     const far = c.lines.filter((l) => l.value > 0 && (l.value < d.min || l.value > d.max));
     const seen = new Set();
     c.note.textContent = far.filter((l) => !seen.has(l.key) && seen.add(l.key))
       .map((l) => `${l.label} ${l.style === "range" ? "" : "±"}${fmt(l.value)} off scale`).join("; ");
-    void peak;
   }
   drawCost = performance.now() - lastDraw;
 }
