@@ -1,4 +1,4 @@
-// gyrostab — command-line entry point: demo, run, check, replay, accuracy, sweep.
+// gyrostab — command-line entry point: demo, run, plant, controller, check, replay, accuracy, sweep, view, export, ...
 #include <CLI/CLI.hpp>
 
 #include <algorithm>

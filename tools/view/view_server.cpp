@@ -440,9 +440,9 @@ void ViewServer::Impl::tick() {
     }
   }
   const auto now = std::chrono::steady_clock::now();
-  // Every 200 ms: 5 page updates a second (a page redraws at most twice a second while a run goes on; more
+  // Every 500 ms: 2 page updates a second (a page redraws at most once a second while a run goes on; more
   // messages would only cost the server's and the browser's CPU, which the loop shares on a small machine).
-  if (++frame % 20 == 0) {
+  if (++frame % 50 == 0) {
     const std::int64_t t = last_tick();
     const double dt = std::chrono::duration<double>(now - rate_t0).count();
     if (dt >= 0.5) {

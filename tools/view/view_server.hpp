@@ -1,6 +1,6 @@
 // The live view's server: HTTP and WebSocket on Boost.Beast, on a thread of its own. It serves the page (static
 // files of tools/view/web/ and uPlot from the build's npm tree) and one WebSocket per open page, over which it
-// sends, never receives: a "meta" message on connect (view_meta.hpp), then 5 times a second the buckets
+// sends, never receives: a "meta" message on connect (view_meta.hpp), then twice a second the buckets
 // that changed since that page's last message, the latest row, the status and the rates, and at the end the
 // report. A page that is slow to read gets fewer, larger messages (its own bookmark into the store), never
 // slows the loop: the loop only pushes into the ring (live_ring.hpp) that this thread drains every 10 ms.
@@ -53,7 +53,7 @@ struct ViewRun {
   int record_every{1};
   double tick_s{1e-3};
   bool growable{false};
-  // Called on the server's thread 5 times a second: more for the page's "link" panel (a listener's counters).
+  // Called on the server's thread twice a second: more for the page's "link" panel (a listener's counters).
   std::function<nlohmann::json()> link;
 };
 

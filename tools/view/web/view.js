@@ -187,15 +187,15 @@ function addBuckets(c, list) {
   }
 }
 
-// The page shares the machine with the loop: while the run goes on it redraws at most twice a second and
-// spends at most about 2 % of its time drawing (the interval grows to 50 times the last draw's duration); at
+// The page shares the machine with the loop: while the run goes on it redraws at most once a second and
+// spends at most about 1 % of its time drawing (the interval grows to 100 times the last draw's duration); at
 // the end it draws at once; never while the tab is hidden (requestAnimationFrame does not fire there, and the
 // page tells nothing to draw until it is shown again).
 let drawPending = false, lastDraw = 0, drawCost = 0;
 function scheduleDraw() {
   if (drawPending || document.hidden) return;
   drawPending = true;
-  const interval = Math.max(500, 50 * drawCost);
+  const interval = Math.max(1000, 100 * drawCost);
   const wait = state.ended ? 0 : Math.max(0, interval - (performance.now() - lastDraw));
   setTimeout(() => requestAnimationFrame(draw), wait);
 }
