@@ -1,4 +1,4 @@
-// gyrostab — command-line entry point: demo, run, check, replay, accuracy, sweep.
+// gyrostab — command-line entry point: demo, run, plant, controller, check, replay, accuracy, sweep, view, export, ...
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include "tools/commands.hpp"
 #include "tools/dbc_command.hpp"
 #include "tools/demo_gimbal_gyro.hpp"
+#include "tools/log/bus_log_export.hpp"
 #include "tools/motion_record_command.hpp"
 #include "tools/replay_command.hpp"
 #include "tools/run/link_cli.hpp"
@@ -17,6 +18,8 @@
 #include "tools/scene/scene_keys.hpp"
 #include "tools/sweep/merge.hpp"
 #include "tools/sweep/sweep_command.hpp"
+#include "tools/view/lcm_view.hpp"
+#include "hil/lcm/lcm_transport.hpp"
 
 #ifndef GYROSTAB_VERSION
 #define GYROSTAB_VERSION "unknown"
@@ -63,8 +66,12 @@ bool refuse_unknown_subcommand(CLI::App& app, int argc, char** argv) {
 // --mcap and --view: the run as an MCAP file, and its live view in the browser.
 CLI::Option* add_live_options(CLI::App* cmd, gyrostab::tools::RunRequest& r) {
   cmd->add_option("--mcap", r.mcap_path,
-                  "also write the run as an MCAP file (recorded signals and report; Foxglove, Lichtblick, "
-                  "PlotJuggler; docs/mcap.md)");
+                  "also write the run as an MCAP file (recorded signals, sensor and actuator frames, report; "
+                  "Foxglove, Lichtblick, PlotJuggler; docs/mcap.md)");
+  cmd->add_option("--mcap-frames-every", r.mcap_frames_every,
+                  "with --mcap: the frame channels hold every N-th tick's frames (default: the recorded rows' "
+                  "ticks, [output] record_every; 1: every tick; 0: no frame channels)")
+      ->check(CLI::NonNegativeNumber);
   CLI::Option* view = cmd->add_option("--view", r.view.address,
                                       "serve a live view of the run in the browser at [ADDR:PORT] (default "
                                       "127.0.0.1 on a free port; the URL with its token is printed; docs/view.md)")
@@ -117,6 +124,8 @@ int main(int argc, char** argv) {
   plant_cmd->add_option("--log", plant.transport.log_path, "record the bus as an LCM event log (docs/logs.md)");
   gyrostab::tools::add_link_options(plant_cmd, plant, gyrostab::tools::LinkSide::kPlant);
   CLI::Option* plant_view = add_live_options(plant_cmd, plant);
+  // For `run --transport lcm|can --mcap`: the frames beside signals.csv, for the parent's MCAP file.
+  plant_cmd->add_flag("--mcap-frames-csv", plant.mcap_frames_csv)->group("");
   gyrostab::tools::RunRequest controller;
   controller.role = gyrostab::tools::Role::kController;
   controller.progress = false;
@@ -210,6 +219,41 @@ int main(int argc, char** argv) {
   record_cmd->add_option("--duration-s", record.duration_s,
                          "span recorded [s] (default: the scene's duration_s; longer lets --ticks run past it)");
 
+  // The live view of a running bus, heard by a passive listener (docs/view.md).
+  gyrostab::tools::view::LcmViewRequest lcm_view;
+  lcm_view.url = gyrostab::hil::kDefaultLcmUrl;
+  CLI::App* view_cmd = app.add_subcommand(
+      "view", "serve a live view of a running plant/controller bus, heard by a listener that never sends "
+              "(frames, their signals, status and safe state; docs/view.md)");
+  view_cmd->add_option("--lcm-url", lcm_view.url, "the bus (udpm://GROUP:PORT, LCM's form)");
+  view_cmd->add_option("--key-file", lcm_view.key_file,
+                       "the link's key: show only frames whose MAC verifies (without it, frames are shown marked "
+                       "as not authenticated)")
+      ->check(CLI::ExistingFile);
+  CLI::Option* view_suffix = view_cmd->add_option(
+      "--channel-suffix", lcm_view.channel_suffix,
+      "listen to GYROSTAB_SENSOR<S> and GYROSTAB_ACTUATOR<S> (default: the suffix of the first frame heard)");
+  view_cmd->add_option("--scene", lcm_view.scene_path,
+                       "the scene that runs on the bus: its device, length, tick and limits (default: the device "
+                       "from the first frame's type)")
+      ->check(CLI::ExistingFile);
+  view_cmd->add_option("--ticks", lcm_view.ticks, "with --scene: the run's length in ticks")
+      ->check(CLI::NonNegativeNumber);
+  view_cmd->add_option("--view", lcm_view.view_address,
+                       "serve at ADDR:PORT (default 127.0.0.1 on a free port; the URL with its token is printed)");
+  view_cmd->add_option("--idle-exit", lcm_view.idle_exit_s,
+                       "exit once frames came and none for this long [s] (default: run until Ctrl-C)");
+
+  // MCAP from a bus log (docs/mcap.md).
+  gyrostab::tools::ExportRequest export_req;
+  CLI::App* export_cmd = app.add_subcommand(
+      "export", "write a bus log (gyrostab run --log) as an MCAP file for Foxglove, Lichtblick, PlotJuggler "
+                "(exit 0 complete, 5 the log is cut or damaged: what it held before is written; docs/mcap.md)");
+  export_cmd->add_option("log", export_req.log_path, "bus log (gyrostab run --log)")->required()->check(CLI::ExistingFile);
+  export_cmd->add_option("--mcap", export_req.mcap_path, "the MCAP file to write")->required();
+  export_cmd->add_option("--every", export_req.every, "the frames of every N-th tick (default 1: every tick)")
+      ->check(CLI::PositiveNumber);
+
   CLI::App* keys_cmd =
       app.add_subcommand("scene-keys", "print docs/scenes.md: every scene key of every device, from the field tables");
 
@@ -219,6 +263,11 @@ int main(int argc, char** argv) {
   plant.view.enabled = plant_view->count() > 0;
   sweep.view = sweep_view->count() > 0;
   if (record_cmd->parsed()) return gyrostab::tools::motion_record(record);
+  if (view_cmd->parsed()) {
+    lcm_view.suffix_given = view_suffix->count() > 0;
+    return gyrostab::tools::view::run_lcm_view(lcm_view);
+  }
+  if (export_cmd->parsed()) return gyrostab::tools::export_log(export_req);
   if (keys_cmd->parsed()) {
     std::fputs(gyrostab::tools::scenes_markdown().c_str(), stdout);
     return 0;

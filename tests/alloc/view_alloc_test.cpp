@@ -1,7 +1,8 @@
-// Zero heap allocations on the loop's thread over the ticks of a run with the live view (`gyrostab run SCENE
-// --view`): for every shipped scene the loop hands each recorded row to the view's feed, which pushes it into
-// the ring allocated before tick 0; the server's own thread (which allocates as it serves) is not the loop's,
-// so the count is the loop thread's alone.
+// Zero heap allocations on the loop's thread over the ticks of a run with the live view and the MCAP file's
+// frames (`gyrostab run SCENE --view --mcap FILE --mcap-frames-every 1`): for every shipped scene the loop hands
+// each recorded row to the view's feed, which pushes it into the ring allocated before tick 0, and every tick's
+// frames to the frame table (tools/run/frame_table.hpp), sized before tick 0; the server's own thread (which
+// allocates as it serves) is not the loop's, so the count is the loop thread's alone.
 #include <gtest/gtest.h>
 
 #include "tests/support/alloc_counter.hpp"
@@ -13,7 +14,7 @@ namespace {
 
 std::uint64_t g_before = 0, g_after = 0;
 
-TEST(ZeroAllocation, LoopWithTheLiveViewOfEveryShippedScene) {
+TEST(ZeroAllocation, LoopWithTheLiveViewAndTheFrameTableOfEveryShippedScene) {
   const auto scenes = testing::shipped_scenes();
   ASSERT_FALSE(scenes.empty());
   for (const auto& path : scenes) {
@@ -24,6 +25,8 @@ TEST(ZeroAllocation, LoopWithTheLiveViewOfEveryShippedScene) {
     req.progress = false;
     req.view.enabled = true;
     req.view.linger_s = 0;
+    req.mcap_frames_csv = true;  // keep the frames as for an MCAP file (written with the outputs: none here)
+    req.mcap_frames_every = 1;
     req.before_loop = [] { g_before = testing::allocations_on_this_thread(); };
     req.after_loop = [] { g_after = testing::allocations_on_this_thread(); };
     nlohmann::json report;

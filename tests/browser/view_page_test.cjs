@@ -76,7 +76,7 @@ async function main() {
       const s = window.gyrostabView;
       return {
         meta: s.meta,
-        buckets: [...s.buckets.values()].sort((a, b) => a.i - b.i),
+        buckets: [...s.channels[0].buckets.values()].sort((a, b) => a.i - b.i),
         labels: [...document.querySelectorAll(".chart .label")].map((e) => e.textContent),
         charts: s.charts.map((c) => ({ name: c.signal.name, limits: c.limits.map((l) => l.key),
                                         x: Array.from(c.plot.data[0].slice(0, 6)),
@@ -94,7 +94,7 @@ async function main() {
     const report = JSON.parse(fs.readFileSync(path.join(out, "report.json"), "utf8"));
     const signals = view.meta.channels[0].signals;
     check(JSON.stringify(signals.map((s) => s.name)) === JSON.stringify(csv.columns), "the meta message names the CSV's columns");
-    const expectedLabels = signals.slice(1).map((s) => (s.unit ? `${s.name} [${s.unit}]` : s.name));
+    const expectedLabels = signals.slice(1).map((s) => (s.unit && s.unit !== "-" ? `${s.name} [${s.unit}]` : s.name));
     check(JSON.stringify(view.labels) === JSON.stringify(expectedLabels),
           `one chart per column, labelled with name and unit: ${view.labels.join(" | ")}`);
     check(view.labels.includes("roll_rad [rad]") && view.labels.includes("precession_torque_Nm [N m]") &&
@@ -102,7 +102,7 @@ async function main() {
           "roll, precession, torque and wave moment are charted");
 
     // The buckets against the CSV: the same rule as the server (tools/view/view_store.cpp), in doubles.
-    const B = view.meta.buckets, tickS = view.meta.scene.tick_ns * 1e-9;
+    const B = view.meta.channels[0].buckets, tickS = view.meta.scene.tick_ns * 1e-9;
     const total = report.timing.ticks;
     const expected = new Map();
     for (const r of csv.rows) {

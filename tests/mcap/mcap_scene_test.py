@@ -6,7 +6,9 @@
 Runs `gyrostab run SCENE --ticks N --mcap WORKDIR/run.mcap` (N = the scene's own ticks: its whole run; the
 environment's GYROSTAB_MCAP_MAX_TICKS caps it), then tests/mcap/mcap_readback.cjs (Foxglove's @mcap/core under Debian's node) reads
 every message back, through the indexes and record by record with every CRC checked, and compares each value
-with signals.csv and the report message with report.json. Exit 77 (skip) when node or @mcap/core is missing
+with signals.csv and the report message with report.json; the frame channels hold one sensor and one actuator
+frame per recorded tick, every field typed and described (tests/mcap/mcap_frames_test.py compares frames with
+the bus log). Exit 77 (skip) when node or @mcap/core is missing
 (tools/setup installs both). With --lcm: plant and controller as two processes over LCM (at most 100 000 ticks), in a private network
 namespace (unshare -n, loopback multicast; exit 77 where that is not permitted), with --view too: the file is
 written from the plant's signals.csv and the merged report."""
@@ -30,6 +32,7 @@ def main():
     with open(scene, "rb") as f:
         s = tomllib.load(f)
     tick_ns = int(round(float(s.get("loop", {}).get("tick_us", 1000)) * 1000))
+    every = int(s.get("output", {}).get("record_every", 10))  # the frame channels' default: the recorded ticks
     ticks = int(round(float(s["scene"]["duration_s"]) * 1e9 / tick_ns))
     if MAX_TICKS > 0:
         ticks = min(ticks, MAX_TICKS)
@@ -62,8 +65,9 @@ def main():
         print(f"FAIL: temporary files left beside the MCAP file: {leftovers}")
         return 1
     here = os.path.dirname(os.path.abspath(__file__))
-    r = subprocess.run([node, os.path.join(here, "mcap_readback.cjs"), mcap, os.path.join(out, "signals.csv"),
-                        os.path.join(out, "report.json")], env=dict(os.environ, NODE_PATH=node_modules),
+    r = subprocess.run([node, os.path.join(here, "mcap_readback.cjs"), mcap, "--csv", os.path.join(out, "signals.csv"),
+                        "--report", os.path.join(out, "report.json"), "--frames-every", str(every)],
+                       env=dict(os.environ, NODE_PATH=node_modules),
                        capture_output=True, text=True, timeout=600)
     print(r.stdout, r.stderr, end="")
     return r.returncode

@@ -3,6 +3,7 @@
 // few), the placing of limits on signals and the units read from column names.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <thread>
 
 #include "tools/log/signal_channel.hpp"
@@ -102,9 +103,51 @@ TEST(ViewMeta, LimitsPlacedOnTheirSignals) {
   EXPECT_EQ(tools::view::limit_signal("motor_torque_limit_Nm", two), "");  // two candidates: not placed
   const std::vector<std::string> one{"t_s", "motor_torque_x_Nm", "beta_rad"};
   EXPECT_EQ(tools::view::limit_signal("motor_torque_limit_Nm", one), "motor_torque_x_Nm");
-  const nlohmann::json placed = tools::view::placed_limits({{"precession_stop_rad", 1.2}, {"off", 0}, {"bad", "x"}}, ship);
+  // A device on the legacy table: no columns declared, limits placed by name (transitional).
+  const tools::ChannelInfo legacy{"/gyrostab/signals", "t", tools::signals_of_columns(ship)};
+  const nlohmann::json placed =
+      tools::view::placed_limits({{"precession_stop_rad", 1.2}, {"off", 0}, {"bad", "x"}}, legacy);
   ASSERT_EQ(placed.size(), 1u);
   EXPECT_EQ(placed[0]["label"], "end stop");
+  EXPECT_EQ(placed[0]["signal"], "precession_rad");
+  EXPECT_EQ(placed[0]["placed_by"], "name");
+  EXPECT_EQ(placed[0]["channel"], "/gyrostab/signals");
+}
+
+// A device converted to its own table: the columns' units, symbols and limits come from its [[column]]s.
+constexpr tools::ColumnSpec kColumns[] = {
+    {"tilt_rad", "φ", "rad", "", "tilt_stop_rad, tilt_soft_rad", "car body tilt"},
+    {"motor_torque_Nm", "M", "N m", "", "torque_max_Nm", "gimbal motor torque"},
+    {"wheel_load_N", "F", "N", "", "", "load on the guide wheel"},
+};
+constexpr tools::DeviceOutputs kOutputs{kColumns, {}};
+
+TEST(SignalChannel, ColumnsFromTheSignalTable) {
+  const auto s = tools::signals_of_columns({"t_s", "tilt_rad", "motor_torque_Nm", "wheel_load_N", "extra_rad"},
+                                           &kOutputs);
+  ASSERT_EQ(s.size(), 5u);
+  EXPECT_EQ(s[1].unit, "rad");
+  EXPECT_EQ(s[1].symbol, "φ");
+  EXPECT_EQ(s[1].description, "car body tilt");
+  EXPECT_EQ(s[1].limits, (std::vector<std::string>{"tilt_stop_rad", "tilt_soft_rad"}));
+  EXPECT_TRUE(s[1].declared);
+  EXPECT_EQ(s[2].unit, "N m");
+  EXPECT_EQ(s[3].unit, "N");  // no suffix rule knows "_N": only the table does
+  EXPECT_FALSE(s[4].declared);  // not in the table: its unit from its name
+  EXPECT_EQ(s[4].unit, "rad");
+  // Limits go where the table says, even where a name would say otherwise ("torque_max_Nm" names no column).
+  const tools::ChannelInfo c{"/gyrostab/signals", "t", s};
+  const nlohmann::json placed = tools::view::placed_limits(
+      {{"tilt_stop_rad", 0.3}, {"tilt_soft_rad", 0.2}, {"torque_max_Nm", 50.0}, {"extra_stop_rad", 1.0},
+       {"nowhere_limit_m", 2.0}},
+      c);
+  std::map<std::string, std::string> where;
+  for (const auto& l : placed) where[l["key"]] = l["signal"].is_null() ? "-" : l["signal"].get<std::string>() + "/" + l["placed_by"].get<std::string>();
+  EXPECT_EQ(where["tilt_stop_rad"], "tilt_rad/table");
+  EXPECT_EQ(where["tilt_soft_rad"], "tilt_rad/table");
+  EXPECT_EQ(where["torque_max_Nm"], "motor_torque_Nm/table");
+  EXPECT_EQ(where["extra_stop_rad"], "extra_rad/name");  // the one undeclared column, by name
+  EXPECT_EQ(where["nowhere_limit_m"], "-");
 }
 
 TEST(SignalChannel, UnitsFromColumnNames) {

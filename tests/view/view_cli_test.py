@@ -173,7 +173,7 @@ def main():
             op, payload = ws.recv()
             msg = json.loads(payload)
             if msg["type"] == "data":
-                rows = msg["rows"]
+                rows = msg["channels"][0]["rows"]
             elif msg["type"] == "end":
                 end = msg
         check(end is not None, "the end message arrives")

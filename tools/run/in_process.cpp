@@ -10,6 +10,8 @@
 #include "tools/devices/registry.hpp"
 #include "tools/run/bus_log_sink.hpp"
 #include "tools/run/closed_loop.hpp"
+#include "tools/run/frame_table.hpp"
+#include "tools/run/run_mcap.hpp"
 #include "tools/run/run_modes.hpp"
 #include "tools/view/run_view.hpp"
 
@@ -70,9 +72,16 @@ int run_in_process(const DeviceScene& scene, const RunRequest& req) {
       return 3;
     }
   }
+  // --mcap: the frames of the recorded ticks (or --mcap-frames-every N) for the file's frame channels.
+  std::string why;
+  std::unique_ptr<FrameTable> frames = make_frame_table(signals_of(scene), req, loop, run_loop.ticks(), why);
+  if (!why.empty()) {
+    std::fprintf(stderr, "gyrostab: --mcap: %s\n", why.c_str());
+    return 2;
+  }
+  TickFanOut sinks(log.get(), frames.get());
   std::unique_ptr<view::RunView> live;
   if (req.view.enabled) {
-    std::string why;
     live = view::RunView::start(scene, req, rec, controller.get(), run_loop.ticks(), why);
     if (!live) {
       std::fprintf(stderr, "gyrostab: %s\n", why.c_str());
@@ -84,7 +93,7 @@ int run_in_process(const DeviceScene& scene, const RunRequest& req) {
     std::unique_ptr<StopSignalGuard> guard;
     if (logging) guard = std::make_unique<StopSignalGuard>();
     if (req.before_loop) req.before_loop();
-    outcome = run_closed_loop(*plant, *controller, run_loop, &rec, req.progress, log.get(),
+    outcome = run_closed_loop(*plant, *controller, run_loop, &rec, req.progress, sinks.sink(),
                               live ? live->sink() : nullptr);
     if (req.after_loop) req.after_loop();
     if (logging && outcome.interrupted) logged.stop_signal = stop_signal_received();
@@ -95,7 +104,7 @@ int run_in_process(const DeviceScene& scene, const RunRequest& req) {
   report["timing"]["controller"] = controller->report();
   if (logging) report["log"] = logged.summary;
   std::string error;
-  const bool written = write_run_outputs(req, loop, rec, report, error);
+  const bool written = write_run_outputs(req, loop, rec, report, error, frames.get());
   if (live) live->finish(report);
   if (!written) {
     std::fprintf(stderr, "gyrostab: %s\n", error.c_str());

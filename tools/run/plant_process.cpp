@@ -44,11 +44,13 @@
 #include "tools/run/can_link_setup.hpp"
 #include "tools/run/closed_loop.hpp"
 #include "tools/run/command_wait.hpp"
+#include "tools/run/frame_table.hpp"
 #include "tools/run/link_identity.hpp"
 #include "tools/run/link_report.hpp"
 #include "tools/run/link_settings.hpp"
 #include "tools/run/link_stats.hpp"
 #include "tools/run/run_modes.hpp"
+#include "tools/run/run_mcap.hpp"
 #include "tools/run/run_output.hpp"
 #include "tools/run/target_link_setup.hpp"
 #include "tools/view/run_view.hpp"
@@ -304,6 +306,14 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
       return 3;
     }
   }
+  // --mcap (or, in the plant process of a pair, the parent's --mcap): the frames the plant published and used.
+  std::string frames_error;
+  std::unique_ptr<FrameTable> frames = make_frame_table(signals_of(scene), req, loop, run_loop.ticks(), frames_error);
+  if (!frames_error.empty()) {
+    std::fprintf(stderr, "gyrostab plant: --mcap: %s\n", frames_error.c_str());
+    return 2;
+  }
+  TickFanOut sinks(log.get(), frames.get());
   // Installed for the rest of the run: a stop request that comes while the outputs are written only sets the
   // flag (the run is ending anyway), so it cannot kill the process half way through report.json.
   StopSignalGuard stop_guard;
@@ -319,7 +329,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   }
   {
     if (req.before_loop) req.before_loop();
-    outcome = run_plant_loop(*plant, limits, signals_of(scene), run_loop, req, s, ep, *stats, link, &rec, log.get(),
+    outcome = run_plant_loop(*plant, limits, signals_of(scene), run_loop, req, s, ep, *stats, link, &rec, sinks.sink(),
                              live ? live->sink() : nullptr);
     if (logging && outcome.interrupted && link.stop_signal == 0) link.stop_signal = stop_signal_received();
     if (req.after_loop) req.after_loop();
@@ -388,7 +398,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   report["link"] = l;
   if (logging) report["log"] = logged.summary;
   std::string error;
-  const bool written = write_run_outputs(req, loop, rec, report, error);
+  const bool written = write_run_outputs(req, loop, rec, report, error, frames.get());
   if (live) live->finish(report);
   if (!written) {
     std::fprintf(stderr, "gyrostab plant: %s\n", error.c_str());

@@ -66,6 +66,11 @@ std::vector<std::string> child_args(const RunRequest& req, const std::string& ro
   }
   if (role == "plant") {
     if (!t.log_path.empty()) a.insert(a.end(), {"--log", t.log_path});
+    // --mcap: the plant keeps the frames and leaves them beside signals.csv for the file this parent writes.
+    if (!req.mcap_path.empty() && req.mcap_frames_every != 0) {
+      a.push_back("--mcap-frames-csv");
+      if (req.mcap_frames_every > 0) a.insert(a.end(), {"--mcap-frames-every", std::to_string(req.mcap_frames_every)});
+    }
     if (req.view.enabled) {
       // The plant process serves the view. It does not linger unless asked to: a Ctrl-C that ended its serving
       // would reach this parent too and mark a completed run as stopped.

@@ -50,15 +50,21 @@ nlohmann::json final_report(const nlohmann::json& in) {
 }
 
 bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recorder& rec, const nlohmann::json& in,
-                       std::string& error) {
+                       std::string& error, const FrameTable* frames) {
   const nlohmann::json report = final_report(in);
   if (req.report_out) *req.report_out = report;
   if (req.csv_out) *req.csv_out = rec.csv();
   if (!req.write_outputs) return true;
-  OutputSet out(req.out_dir, {"report.json", "signals.csv", "signals.png"});
+  OutputSet out(req.out_dir, {"report.json", "signals.csv", "signals.png", kSensorFramesCsv, kActuatorFramesCsv});
   if (!out.open(error)) return false;
   if (!out.write("report.json", report.dump(2) + "\n", error)) return false;
   if (!rec.write_csv(out.staged("signals.csv"), error)) return false;
+  if (req.mcap_frames_csv && frames != nullptr) {
+    if (!write_frames_csv(*frames, FrameDirection::kSensor, out.staged(kSensorFramesCsv), error) ||
+        !write_frames_csv(*frames, FrameDirection::kActuator, out.staged(kActuatorFramesCsv), error)) {
+      return false;
+    }
+  }
   const char* here = std::getenv("GYROSTAB_PLOT_SCRIPT");  // set and empty: no plots (tests, the CAN VM)
   if (cfg.plots && (here == nullptr || *here != '\0')) {
     const std::string script = here ? here : std::string(build_source_dir()) + "/tools/plot/plot_run.py";
@@ -83,7 +89,7 @@ bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recor
   }
   // After the directory's outputs are in place, so a failure here loses none of them.
   if (!req.mcap_path.empty() && req.role != Role::kController) {
-    if (!write_run_mcap(req.mcap_path, cfg, rec, report, {}, error)) return false;
+    if (!write_run_mcap(req.mcap_path, cfg, rec, report, frames, error)) return false;
     std::printf("%s: wrote %s\n", req.scene_path.c_str(), req.mcap_path.c_str());
   }
   return true;

@@ -12,6 +12,8 @@
 
 namespace gyrostab::tools {
 
+class FrameTable;
+
 struct RunRequest {
   std::string scene_path;
   std::string scene_text;  // the scene's TOML when not read from scene_path (replay: the log's scene event);
@@ -22,6 +24,12 @@ struct RunRequest {
   Role role{Role::kInProcess};  // which part of the loop this process runs (run_role.hpp)
   TransportOptions transport;
   std::string mcap_path;  // --mcap FILE: the run as an MCAP file too (run_mcap.hpp)
+  // --mcap-frames-every N: the file's frame channels hold every N-th tick's frames (< 0: the recorder's row
+  // interval; 0: no frame channels).
+  std::int64_t mcap_frames_every{-1};
+  // The plant process of `run --transport lcm|can --mcap`: the frames as frames_*.csv beside signals.csv, for
+  // the parent's MCAP file (run_mcap.hpp).
+  bool mcap_frames_csv{false};
   // --view [ADDR:PORT]: the live view (tools/view/run_view.hpp)
   struct View {
     bool enabled{false};
@@ -48,8 +56,9 @@ nlohmann::json timing_summary(const LoopConfig& cfg, const LoopOutcome& outcome)
 nlohmann::json final_report(const nlohmann::json& report);
 
 // Hands the report and CSV to the request (report_out, csv_out) and, if write_outputs, writes report.json,
-// signals.csv and (if cfg.plots) signals.png; returns false with `error` set.
+// signals.csv and (if cfg.plots) signals.png; returns false with `error` set. `frames`: the frames the run kept
+// for its MCAP file (or its parent's: frames_sensor.csv, frames_actuator.csv).
 bool write_run_outputs(const RunRequest& req, const LoopConfig& cfg, const Recorder& rec, const nlohmann::json& report,
-                       std::string& error);
+                       std::string& error, const FrameTable* frames = nullptr);
 
 }  // namespace gyrostab::tools

@@ -17,10 +17,13 @@ namespace gyrostab::tools::view {
 struct RowHeader {
   std::int64_t tick{0};
   std::uint32_t status{0};  // the controller's fault-monitor status word (msg/fault_bits.hpp)
-  std::uint32_t flags{0};   // kHasStatus, kSafe
+  std::uint32_t flags{0};   // kHasStatus, kSafe, kAuthenticated, kNewRun
 };
-inline constexpr std::uint32_t kHasStatus = 1u;  // status and kSafe are known (the controller runs here)
+inline constexpr std::uint32_t kHasStatus = 1u;  // status and kSafe are known (the controller runs here, or
+                                                 // the row is an actuator frame, whose status word is the controller's)
 inline constexpr std::uint32_t kSafe = 2u;       // the controller is in its safe state
+inline constexpr std::uint32_t kAuthenticated = 4u;  // a frame whose MAC verified under the viewer's key
+inline constexpr std::uint32_t kNewRun = 8u;         // the first row of another run (a new session on the bus)
 
 class LiveRing {
  public:

@@ -6,6 +6,7 @@
 
 #include "tools/log/stop_signal.hpp"
 #include "tools/run/run_output.hpp"
+#include "tools/signals/device_outputs.hpp"
 
 namespace gyrostab::tools::view {
 
@@ -33,13 +34,17 @@ std::unique_ptr<RunView> RunView::start(const DeviceScene& scene, const RunReque
   std::unique_ptr<RunView> v(new RunView(req, rec.width(), controller));
   ViewRun run;
   run.scene = scene_summary(loop, req.scene_path);
-  run.signals = ChannelInfo{"/gyrostab/signals", "gyrostab.signals." + loop.device, signals_of_columns(rec.columns())};
+  ViewChannel signals;
+  signals.info = ChannelInfo{"/gyrostab/signals", "gyrostab.signals." + loop.device,
+                             signals_of_columns(rec.columns(), find_device_outputs(loop.device))};
+  signals.ring = &v->ring_;
+  signals.status = controller != nullptr ? "fault" : "";
+  run.channels.push_back(std::move(signals));
   run.limits = scene.limits();
   run.total_ticks = ticks;
   run.record_every = loop.record_every;
   run.tick_s = loop.tick_s();
-  run.has_status = controller != nullptr;
-  if (!v->server_.start(options, run, v->ring_, error)) return nullptr;
+  if (!v->server_.start(options, run, error)) return nullptr;
   std::fprintf(stderr, "gyrostab: live view of %s at %s\n", loop.name.c_str(), v->server_.url().c_str());
   std::fflush(stderr);
   if (req.view.wait_s > 0) {

@@ -1,8 +1,9 @@
 // The first message a page receives: the scene, the channels and their signals (name, unit, symbol, range,
 // description — what is known), the scene's limits (report.json "limits") each placed on the signal it bounds,
-// and the names of the controller's status bits.
+// and the names of the status bits.
 #pragma once
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -11,22 +12,36 @@
 
 namespace gyrostab::tools::view {
 
-// The signal a limit bounds, or "" when none is clear. Until the signal tables declare it, by name: the limit's
-// key less its "limit"/"stop"/"soft" words must be a column's name ("precession_stop_rad" -> "precession_rad",
-// "precession_torque_limit_Nm" -> "precession_torque_Nm"), else the one column that starts with the key's
-// first word and ends in the same unit ("motor_torque_limit_Nm" -> "motor_torque_x_Nm" if it is the only one).
+// Transitional, for devices whose signal table declares no columns yet: the signal a limit bounds, by name, or
+// "" when none is clear. The limit's key less its "limit"/"stop"/"soft" words must be a column's name
+// ("precession_stop_rad" -> "precession_rad", "precession_torque_limit_Nm" -> "precession_torque_Nm"), else the
+// one column that starts with the key's first word and ends in the same unit ("motor_torque_limit_Nm" ->
+// "motor_torque_x_Nm" if it is the only one). A converted device's columns name their limits instead
+// (ColumnSpec::limits, SignalInfo::limits).
 std::string limit_signal(const std::string& key, const std::vector<std::string>& columns);
 
-// [{"key", "value", "signal" (or null), "label"}] for the limits that are finite positive numbers.
-nlohmann::json placed_limits(const nlohmann::json& limits, const std::vector<std::string>& columns);
+// [{"key", "value", "channel", "signal" (or null), "label", "placed_by": "table" | "name"}] for the limits that
+// are finite positive numbers: on every signal of `channel` whose table declares the key; else, among the
+// signals no table describes, by name (limit_signal); else unplaced (signal null).
+nlohmann::json placed_limits(const nlohmann::json& limits, const ChannelInfo& channel);
 
-// [{"bit", "mask", "name", "kind": "cause" | "state"}] of msg::FaultBit.
+// [{"bit", "mask", "name", "kind": "cause" | "state"}] of msg::FaultBit (the actuator frame's status word).
 nlohmann::json status_bit_names();
+// [{"bit", "mask", "name"}] of msg::SensorStatusBit (the sensor frame's status word).
+nlohmann::json sensor_status_bit_names();
 
-// {"type": "meta", "scene": {...}, "channels": [{"topic", "signals": [...]}], "limits", "status_bits",
-//  "buckets", "has_status"}
-nlohmann::json meta_message(const nlohmann::json& scene, const ChannelInfo& signals, const nlohmann::json& limits,
-                            std::int64_t buckets, bool has_status);
+// What the meta message says of one channel.
+struct ChannelMeta {
+  const ChannelInfo* info;
+  std::string status;  // "fault": its rows carry the controller's status word; "sensor": a sensor frame's; ""
+  std::int64_t buckets;
+  std::int64_t span_ticks;
+};
+
+// {"type": "meta", "source", "scene": {...}, "channels": [{"topic", "title", "signals", "status", "buckets",
+//  "span_ticks", "span_s"}], "limits", "status_bits", "sensor_status_bits", "has_status", "tick_s"}
+nlohmann::json meta_message(const std::string& source, const nlohmann::json& scene,
+                            const std::vector<ChannelMeta>& channels, const nlohmann::json& limits, double tick_s);
 
 nlohmann::json signal_json(const SignalInfo& s);
 

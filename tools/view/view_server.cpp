@@ -141,10 +141,10 @@ struct ViewServer::Impl {
   std::string host_port;           // as the URL names it
   std::set<std::string> hosts;     // Host header values accepted
   bool any_host{false};            // bound to a wildcard address: any Host, the token decides
-  LiveRing* ring{nullptr};
-  std::unique_ptr<ViewStore> store;
+  bool rows_mode{false};           // a run's (or a bus's) rows, not snapshots
+  std::vector<std::unique_ptr<ViewStore>> stores;  // one per channel
   ViewRun run;
-  std::string meta;                // the meta message, serialised once
+  std::string meta;                // the meta message, serialised when the channels' spans change
   std::string page{"index.html"};  // what "/" serves
   // Snapshot mode (no ring): the latest state and its version, set by publish() from any thread.
   std::mutex snap_mutex;
@@ -161,8 +161,10 @@ struct ViewServer::Impl {
 
   void accept();
   void tick();
-  void drain();
-  nlohmann::json data_message(std::int64_t from) const;
+  bool drain();  // true when a store's span changed (a new meta message is due)
+  void make_meta();
+  std::int64_t last_tick() const;
+  nlohmann::json data_message(const std::vector<std::int64_t>& from) const;
   bool host_ok(const std::string& host) const {
     return any_host || hosts.count(host) != 0;
   }
@@ -176,7 +178,7 @@ struct WsSession : std::enable_shared_from_this<WsSession> {
   bool writing{false};
   bool open{false};
   bool got_end{false};
-  std::int64_t next_bucket{0};
+  std::vector<std::int64_t> next_bucket;  // per channel
   std::uint64_t snap_seen{0};
   http::request<http::string_body> upgrade;  // kept until the handshake completes
 
@@ -192,6 +194,7 @@ struct WsSession : std::enable_shared_from_this<WsSession> {
       if (ec) return;
       self->open = true;
       ++self->server.pages;
+      self->next_bucket.assign(self->server.stores.size(), 0);
       self->send(self->server.meta);
       self->read();
     });
@@ -338,37 +341,73 @@ void ViewServer::Impl::accept() {
   });
 }
 
-void ViewServer::Impl::drain() {
-  ring->drain([this](const RowHeader& h, const double* v) { store->add(h, v); });
+bool ViewServer::Impl::drain() {
+  bool span_changed = false;
+  for (std::size_t c = 0; c < stores.size(); ++c) {
+    ViewStore& store = *stores[c];
+    run.channels[c].ring->drain([&](const RowHeader& h, const double* v) {
+      if ((h.flags & kNewRun) != 0 && store.rows() > 0) {
+        store.clear();
+        span_changed = true;
+      }
+      span_changed = store.add(h, v) || span_changed;
+    });
+  }
+  return span_changed;
 }
 
-nlohmann::json ViewServer::Impl::data_message(std::int64_t from) const {
-  const RowHeader& h = store->last_header();
-  nlohmann::json latest = nlohmann::json(nullptr);
-  if (store->rows() > 0) {
-    nlohmann::json values = nlohmann::json::array();
-    for (double v : store->last_values()) values.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr));
-    latest = {{"tick", h.tick}, {"values", values}};
-    if (run.has_status) {
-      latest["status"] = h.status;
-      latest["safe"] = (h.flags & kSafe) != 0;
-    }
+void ViewServer::Impl::make_meta() {
+  std::vector<ChannelMeta> ch;
+  for (std::size_t c = 0; c < stores.size(); ++c) {
+    ch.push_back({&run.channels[c].info, run.channels[c].status, stores[c]->buckets(), stores[c]->span_ticks()});
   }
+  meta = meta_message(run.source, run.scene, ch, run.limits, run.tick_s)
+             .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+std::int64_t ViewServer::Impl::last_tick() const {
+  std::int64_t t = 0;
+  for (const auto& s : stores)
+    if (s->rows() > 0) t = std::max(t, s->last_header().tick);
+  return t;
+}
+
+nlohmann::json ViewServer::Impl::data_message(const std::vector<std::int64_t>& from) const {
+  nlohmann::json channels = nlohmann::json::array();
+  for (std::size_t c = 0; c < stores.size(); ++c) {
+    const ViewStore& store = *stores[c];
+    const RowHeader& h = store.last_header();
+    nlohmann::json latest = nlohmann::json(nullptr);
+    if (store.rows() > 0) {
+      nlohmann::json values = nlohmann::json::array();
+      for (double v : store.last_values()) values.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr));
+      latest = {{"tick", h.tick}, {"values", values}, {"flags", h.flags}};
+      if (!run.channels[c].status.empty()) {
+        latest["status"] = h.status;
+        latest["safe"] = (h.flags & kSafe) != 0;
+      }
+    }
+    channels.push_back({{"buckets", store.buckets_json(c < from.size() ? from[c] : 0)},
+                        {"latest", latest},
+                        {"rows", store.rows()},
+                        {"status_seen", store.status_seen()},
+                        {"safe_rows", store.safe_rows()},
+                        {"dropped", run.channels[c].ring->dropped()}});
+  }
+  const std::int64_t t = last_tick();
+  nlohmann::json progress = nlohmann::json(nullptr);
+  if (!run.growable && run.total_ticks > 0) progress = static_cast<double>(t) / static_cast<double>(run.total_ticks);
   return {{"type", "data"},
-          {"buckets", store->buckets_json(from)},
-          {"latest", latest},
-          {"rows", store->rows()},
-          {"status_seen", store->status_seen()},
-          {"safe_rows", store->safe_rows()},
+          {"channels", channels},
           {"ticks_per_s", ticks_per_s},
           {"real_time_factor", ticks_per_s * run.tick_s},
-          {"progress", run.total_ticks > 0 ? static_cast<double>(h.tick) / static_cast<double>(run.total_ticks) : 0.0},
-          {"dropped", ring->dropped()},
+          {"progress", progress},
+          {"link", run.link ? run.link() : nlohmann::json(nullptr)},
           {"ended", !end_message.empty()}};
 }
 
 void ViewServer::Impl::tick() {
-  if (ring == nullptr) {  // snapshot mode
+  if (!rows_mode) {  // snapshot mode
     if (++frame % 10 == 0) {
       std::string snap;
       std::uint64_t version = 0;
@@ -390,13 +429,24 @@ void ViewServer::Impl::tick() {
     });
     return;
   }
-  drain();
+  if (drain()) {
+    // A span grew or a new run began: every page starts again from the new meta message.
+    make_meta();
+    for (auto& w : sessions) {
+      auto s = w.lock();
+      if (!s || !s->open || s->got_end) continue;
+      s->send(meta);
+      s->next_bucket.assign(stores.size(), 0);
+    }
+  }
   const auto now = std::chrono::steady_clock::now();
-  if (++frame % 10 == 0) {  // every 100 ms: 10 page updates a second (a page redraws at 5 Hz while a run goes on)
-    const std::int64_t t = store->last_header().tick;
+  // Every 500 ms: 2 page updates a second (a page redraws at most once a second while a run goes on; more
+  // messages would only cost the server's and the browser's CPU, which the loop shares on a small machine).
+  if (++frame % 50 == 0) {
+    const std::int64_t t = last_tick();
     const double dt = std::chrono::duration<double>(now - rate_t0).count();
     if (dt >= 0.5) {
-      if (end_message.empty()) ticks_per_s = static_cast<double>(t - rate_tick0) / dt;
+      if (end_message.empty()) ticks_per_s = t >= rate_tick0 ? static_cast<double>(t - rate_tick0) / dt : 0.0;
       rate_t0 = now;
       rate_tick0 = t;
     }
@@ -404,9 +454,10 @@ void ViewServer::Impl::tick() {
       auto s = w.lock();
       if (!s || !s->idle()) continue;  // a page still reading its last message skips this frame
       if (s->got_end) continue;
-      const std::int64_t last = store->last_bucket();
       s->send(data_message(s->next_bucket).dump());
-      s->next_bucket = std::max<std::int64_t>(last, 0);
+      for (std::size_t c = 0; c < stores.size() && c < s->next_bucket.size(); ++c) {
+        s->next_bucket[c] = std::max<std::int64_t>(stores[c]->last_bucket(), 0);
+      }
       if (!end_message.empty()) {
         s->send(end_message);
         s->got_end = true;
@@ -423,12 +474,14 @@ void ViewServer::Impl::tick() {
 ViewServer::ViewServer() : impl_(std::make_unique<Impl>()) {}
 ViewServer::~ViewServer() { stop(); }
 
-bool ViewServer::start(const ViewOptions& options, const ViewRun& run, LiveRing& ring, std::string& error) {
+bool ViewServer::start(const ViewOptions& options, const ViewRun& run, std::string& error) {
   Impl& s = *impl_;
-  s.ring = &ring;
+  s.rows_mode = true;
   s.run = run;
-  s.store = std::make_unique<ViewStore>(run.total_ticks, run.record_every, ring.width());
-  s.meta = meta_message(run.scene, run.signals, run.limits, s.store->buckets(), run.has_status).dump();
+  for (const ViewChannel& c : run.channels) {
+    s.stores.push_back(std::make_unique<ViewStore>(run.total_ticks, run.record_every, c.ring->width(), run.growable));
+  }
+  s.make_meta();
   return listen(options, error);
 }
 

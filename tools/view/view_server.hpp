@@ -1,6 +1,6 @@
 // The live view's server: HTTP and WebSocket on Boost.Beast, on a thread of its own. It serves the page (static
 // files of tools/view/web/ and uPlot from the build's npm tree) and one WebSocket per open page, over which it
-// sends, never receives: a "meta" message on connect (view_meta.hpp), then 10 times a second the buckets
+// sends, never receives: a "meta" message on connect (view_meta.hpp), then twice a second the buckets
 // that changed since that page's last message, the latest row, the status and the rates, and at the end the
 // report. A page that is slow to read gets fewer, larger messages (its own bookmark into the store), never
 // slows the loop: the loop only pushes into the ring (live_ring.hpp) that this thread drains every 10 ms.
@@ -13,9 +13,11 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "tools/log/signal_channel.hpp"
 #include "tools/view/live_ring.hpp"
@@ -33,15 +35,26 @@ std::string parse_view_address(const std::string& text, ViewOptions& out);
 // 32 hex digits from getrandom(2); "" if the OS's random source failed.
 std::string random_token();
 
-// What the server shows of a run: its scene, its recorded signals, its limits and its length.
+// One channel the view charts: its signals ("t_s" first) and the ring its rows come through.
+struct ViewChannel {
+  ChannelInfo info;
+  LiveRing* ring{nullptr};  // must outlive the server
+  std::string status;       // "fault": the rows' status word is the controller's (msg::FaultBit) — in process,
+                            // or an actuator frame's; "sensor": a sensor frame's (msg::SensorStatusBit); "": none
+};
+
+// What the server shows of a run: its scene, its channels, its limits and its length.
 struct ViewRun {
-  nlohmann::json scene;          // report.json "scene"
-  ChannelInfo signals;           // "t_s" first
+  std::string source{"run"};     // "run": a loop in this process; "lcm": frames heard on a bus
+  nlohmann::json scene;          // report.json "scene" (or what a listener knows of it)
+  std::vector<ViewChannel> channels;
   nlohmann::json limits;         // report.json "limits"
-  std::int64_t total_ticks{0};
+  std::int64_t total_ticks{0};   // the run's length; a bus listener's grows with the frames (growable)
   int record_every{1};
   double tick_s{1e-3};
-  bool has_status{false};        // the controller runs in this process: status and safe state are known
+  bool growable{false};
+  // Called on the server's thread twice a second: more for the page's "link" panel (a listener's counters).
+  std::function<nlohmann::json()> link;
 };
 
 class ViewServer {
@@ -51,8 +64,8 @@ class ViewServer {
   ViewServer(const ViewServer&) = delete;
   ViewServer& operator=(const ViewServer&) = delete;
 
-  // Binds and starts the thread; false with `error` set. `ring` must outlive the server.
-  bool start(const ViewOptions& options, const ViewRun& run, LiveRing& ring, std::string& error);
+  // Binds and starts the thread; false with `error` set.
+  bool start(const ViewOptions& options, const ViewRun& run, std::string& error);
   // The other kind of view, for work that is not one loop (a sweep): the page `page` (a file of
   // tools/view/web/), `meta` sent on connect, then the latest publish()ed state whenever it changed.
   bool start_snapshots(const ViewOptions& options, const std::string& page, const nlohmann::json& meta,

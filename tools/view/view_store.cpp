@@ -7,10 +7,17 @@
 
 namespace gyrostab::tools::view {
 
-ViewStore::ViewStore(std::int64_t total_ticks, int every, std::size_t width)
-    : total_ticks_(std::max<std::int64_t>(total_ticks, 1)), width_(width) {
-  const std::int64_t rows = total_ticks_ / std::max(every, 1) + 1;
-  buckets_ = std::clamp<std::int64_t>(rows, 1, kMaxBuckets);
+ViewStore::ViewStore(std::int64_t total_ticks, int every, std::size_t width, bool growable)
+    : width_(width), growable_(growable) {
+  if (growable) {
+    buckets_ = kMaxBuckets;
+    total_ticks_ = std::max<std::int64_t>(total_ticks, kMaxBuckets * std::max(every, 1) - 1);
+  } else {
+    total_ticks_ = std::max<std::int64_t>(total_ticks, 1);
+    const std::int64_t rows = total_ticks_ / std::max(every, 1) + 1;
+    buckets_ = std::clamp<std::int64_t>(rows, 1, kMaxBuckets);
+  }
+  initial_ticks_ = total_ticks_;
   const std::size_t n = static_cast<std::size_t>(buckets_);
   const std::size_t signals = width_ > 0 ? width_ - 1 : 0;
   b_.resize(n);
@@ -18,6 +25,62 @@ ViewStore::ViewStore(std::int64_t total_ticks, int every, std::size_t width)
   hi_.assign(n * signals, 0.0);
   lo_first_.assign(n * signals, 0);
   last_values_.assign(width_, 0.0);
+}
+
+void ViewStore::clear() {
+  std::fill(b_.begin(), b_.end(), Bucket{});
+  total_ticks_ = initial_ticks_;
+  rows_ = 0;
+  last_bucket_ = -1;
+  last_header_ = RowHeader{};
+  std::fill(last_values_.begin(), last_values_.end(), 0.0);
+  status_seen_ = 0;
+  safe_rows_ = 0;
+}
+
+void ViewStore::grow() {
+  // (total + 1) doubles, so bucket i of the new span is exactly buckets 2i and 2i + 1 of the old one:
+  // floor(tick·B / 2(T + 1)) = floor(floor(tick·B / (T + 1)) / 2).
+  const std::size_t signals = width_ > 0 ? width_ - 1 : 0;
+  const std::size_t half = static_cast<std::size_t>(buckets_) / 2;
+  for (std::size_t i = 0; i < half; ++i) {
+    const std::size_t a = 2 * i, c = 2 * i + 1;
+    const Bucket ba = b_[a], bc = b_[c];
+    Bucket out;
+    out.n = ba.n + bc.n;
+    out.t0 = ba.n > 0 ? ba.t0 : bc.t0;
+    out.t1 = bc.n > 0 ? bc.t1 : ba.t1;
+    for (std::size_t j = 0; j < signals; ++j) {
+      double lo = lo_[a * signals + j], hi = hi_[a * signals + j];
+      std::uint8_t first = lo_first_[a * signals + j];
+      bool lo_late = false, hi_late = false;  // the extreme comes from the later bucket
+      if (ba.n == 0) {
+        lo = lo_[c * signals + j];
+        hi = hi_[c * signals + j];
+        first = lo_first_[c * signals + j];
+      } else if (bc.n > 0) {
+        const double l2 = lo_[c * signals + j], h2 = hi_[c * signals + j];
+        if (l2 < lo || (std::isnan(lo) && !std::isnan(l2))) {
+          lo = l2;
+          lo_late = true;
+        }
+        if (h2 > hi || (std::isnan(hi) && !std::isnan(h2))) {
+          hi = h2;
+          hi_late = true;
+        }
+        if (lo_late && hi_late) first = lo_first_[c * signals + j];
+        else if (lo_late) first = 0;
+        else if (hi_late) first = 1;
+      }
+      lo_[i * signals + j] = lo;
+      hi_[i * signals + j] = hi;
+      lo_first_[i * signals + j] = first;
+    }
+    b_[i] = out;
+  }
+  for (std::size_t i = half; i < static_cast<std::size_t>(buckets_); ++i) b_[i] = Bucket{};
+  total_ticks_ = 2 * total_ticks_ + 1;
+  last_bucket_ = last_bucket_ < 0 ? -1 : last_bucket_ / 2;
 }
 
 std::int64_t ViewStore::bucket_of(std::int64_t tick) const {
@@ -28,7 +91,12 @@ std::int64_t ViewStore::bucket_of(std::int64_t tick) const {
   return std::min(b, buckets_ - 1);
 }
 
-void ViewStore::add(const RowHeader& h, const double* v) {
+bool ViewStore::add(const RowHeader& h, const double* v) {
+  bool grew = false;
+  while (growable_ && h.tick > total_ticks_ && total_ticks_ < (std::int64_t{1} << 61)) {
+    grow();
+    grew = true;
+  }
   const std::int64_t i = bucket_of(h.tick);
   Bucket& b = b_[static_cast<std::size_t>(i)];
   const std::size_t signals = width_ > 0 ? width_ - 1 : 0;
@@ -64,6 +132,7 @@ void ViewStore::add(const RowHeader& h, const double* v) {
   std::copy(v, v + width_, last_values_.begin());
   status_seen_ |= h.status;
   if ((h.flags & kSafe) != 0) ++safe_rows_;
+  return grew;
 }
 
 namespace {

@@ -19,13 +19,19 @@ inline constexpr std::int64_t kMaxBuckets = 2000;
 class ViewStore {
  public:
   // `total_ticks` the run's length, `every` the recorder's row interval, `width` values per row ("t_s" first).
-  ViewStore(std::int64_t total_ticks, int every, std::size_t width);
+  // A growable store (a bus whose run's length is not known) always has kMaxBuckets buckets and doubles its span
+  // (merging neighbouring buckets, which keeps every extreme) whenever a row lies past it.
+  ViewStore(std::int64_t total_ticks, int every, std::size_t width, bool growable = false);
 
   std::int64_t buckets() const { return buckets_; }
+  std::int64_t span_ticks() const { return total_ticks_; }
   // The bucket of a row at `tick`: floor(tick × buckets / (total_ticks + 1)), in doubles.
   std::int64_t bucket_of(std::int64_t tick) const;
 
-  void add(const RowHeader& h, const double* values);
+  // Adds a row; true if the span grew to take it (every bucket changed: pages need the whole store again).
+  bool add(const RowHeader& h, const double* values);
+  // Forgets every row (a new run on the bus), keeping the span it started with.
+  void clear();
 
   std::int64_t rows() const { return rows_; }
   std::int64_t last_bucket() const { return last_bucket_; }  // -1 before the first row
@@ -43,9 +49,12 @@ class ViewStore {
     double t0{0}, t1{0};
     std::int64_t n{0};
   };
+  void grow();
+  std::int64_t initial_ticks_;
   std::int64_t total_ticks_;
   std::int64_t buckets_;
   std::size_t width_;
+  bool growable_;
   std::vector<Bucket> b_;
   std::vector<double> lo_, hi_;
   std::vector<std::uint8_t> lo_first_;

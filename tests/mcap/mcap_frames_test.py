@@ -1,0 +1,143 @@
+#!/usr/bin/env python3
+"""ctest label `mcap`: the frame channels against the bus log, and `gyrostab export`.
+
+  mcap_frames_test.py GYROSTAB SOURCE_DIR WORKDIR NODE_MODULES
+
+1. `gyrostab run` the active ship for 20 000 ticks with --log and --mcap --mcap-frames-every 1: every message of
+   /gyrostab/sensor and /gyrostab/actuator equals the bus log's frame of its tick, header and every signal bit for
+   bit, decoded from the log by tests/mcap/mcap_readback.cjs itself (LCM's event-log format, big-endian frames),
+   not by gyrostab's reader; /gyrostab/signals equals signals.csv. Then the default (--mcap alone): one frame per
+   recorded row's tick. Over LCM (plant and controller processes in a private network namespace, 5000 ticks):
+   the plant's frames reach the parent's file, equal to the bus log the plant wrote.
+2. `gyrostab export LOG --mcap FILE`: the same frames, every tick; the scene event's text; the log complete.
+   With --every 7: every 7th tick.
+3. A log cut in the middle of an event and a log with a damaged event: exit 5 with the reader's message; the file
+   holds every whole tick before the damage and its /gyrostab/log message says the log is incomplete and where.
+   A log whose scene event is damaged: exit 5 and no file. A candump log is refused (exit 2) with a message.
+Exit 77 (skip) without node or @mcap/core (tools/setup installs both). About 3 s."""
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+FAILS = []
+
+
+def check(cond, what):
+    print(("ok   " if cond else "FAIL ") + what)
+    if not cond:
+        FAILS.append(what)
+
+
+def main():
+    gyrostab, src, work, node_modules = sys.argv[1:5]
+    node = shutil.which("node")
+    if node is None or not os.path.isdir(os.path.join(node_modules, "@mcap", "core")):
+        print("skip: node or @mcap/core missing (tools/setup installs them)")
+        return 77
+    t0 = time.time()
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    scene = os.path.join(src, "sim/scenes/ship-roll-damper-active.toml")
+    env = dict(os.environ, GYROSTAB_PLOT_SCRIPT="")
+    readback = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mcap_readback.cjs")
+
+    def read(mcap, *extra):
+        r = subprocess.run([node, readback, mcap, *extra], env=dict(os.environ, NODE_PATH=node_modules),
+                           capture_output=True, text=True, timeout=300)
+        print("     " + (r.stdout + r.stderr).strip())
+        return r.returncode == 0
+
+    def run(*args, timeout=300):
+        return subprocess.run([gyrostab, *args], env=env, capture_output=True, text=True, timeout=timeout)
+
+    # 1. Every tick's frames against the bus log.
+    out, log, mcap = (os.path.join(work, n) for n in ("out", "run.lcmlog", "run.mcap"))
+    r = run("run", scene, "--no-progress", "--ticks", "20000", "--out", out, "--log", log, "--mcap", mcap,
+            "--mcap-frames-every", "1")
+    check(r.returncode == 0, f"run --log --mcap --mcap-frames-every 1 exits 0 ({r.returncode}) {r.stderr.strip()}")
+    check(read(mcap, "--csv", f"{out}/signals.csv", "--report", f"{out}/report.json", "--frames-every", "1",
+               "--bus-log", log), "every tick's sensor and actuator frame equals the bus log's, bit for bit")
+    default = os.path.join(work, "default.mcap")
+    r = run("run", scene, "--no-progress", "--ticks", "20000", "--out", os.path.join(work, "out2"), "--mcap", default)
+    check(r.returncode == 0 and read(default, "--csv", f"{work}/out2/signals.csv", "--report",
+                                     f"{work}/out2/report.json", "--frames-every", "50", "--bus-log", log),
+          "by default the frames of the recorded ticks (record_every = 50), equal to the bus log's")
+    none = os.path.join(work, "none.mcap")
+    r = run("run", scene, "--no-progress", "--ticks", "2000", "--out", os.path.join(work, "out3"), "--mcap", none,
+            "--mcap-frames-every", "0")
+    check(r.returncode == 0 and read(none, "--csv", f"{work}/out3/signals.csv", "--report", f"{work}/out3/report.json"),
+          "--mcap-frames-every 0: no frame channels")
+
+    # Over LCM: the plant process keeps the frames; the parent writes them into its file.
+    if subprocess.run(["unshare", "-n", "true"], capture_output=True).returncode == 0:
+        lo, llog, lmcap = os.path.join(work, "lcm"), os.path.join(work, "lcm.lcmlog"), os.path.join(work, "lcm.mcap")
+        cmd = ["unshare", "-n", "--", "sh", "-c", "ip link set lo up && ip link set lo multicast on && "
+               "ip route add 224.0.0.0/4 dev lo && exec \"$@\"", "sh", gyrostab, "run", scene, "--no-progress",
+               "--ticks", "5000", "--out", lo, "--transport", "lcm", "--log", llog, "--mcap", lmcap,
+               "--mcap-frames-every", "1"]
+        r = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300)
+        check(r.returncode == 0, f"over LCM with --log --mcap: exit 0 ({r.returncode}) {r.stderr.strip()[-300:]}")
+        check(read(lmcap, "--csv", f"{lo}/signals.csv", "--report", f"{lo}/report.json", "--frames-every", "1",
+                   "--bus-log", llog), "over LCM: the plant's frames in the parent's file equal its bus log")
+        check(not any(n.startswith("frames_") for n in os.listdir(lo)), "the plant's frame CSVs are removed afterwards")
+    else:
+        print("skip the LCM case: no private network namespace (unshare -n)")
+
+    # 2. Export.
+    exported = os.path.join(work, "export.mcap")
+    r = run("export", log, "--mcap", exported)
+    check(r.returncode == 0, f"export exits 0 ({r.returncode}) {r.stderr.strip()}")
+    check(read(exported, "--export", scene, "--frames-every", "1", "--bus-log", log),
+          "export: every tick's frames equal the bus log's; the scene's text; the log complete")
+    every7 = os.path.join(work, "export7.mcap")
+    r = run("export", log, "--mcap", every7, "--every", "7")
+    check(r.returncode == 0 and read(every7, "--export", scene, "--frames-every", "7", "--bus-log", log),
+          "export --every 7: every 7th tick")
+
+    # 3. Damaged logs: what came before the damage is exported, and the exit code and the file say so.
+    data = open(log, "rb").read()
+    cut = os.path.join(work, "cut.lcmlog")
+    with open(cut, "wb") as f:
+        f.write(data[: len(data) // 2 + 101])
+    cut_mcap = os.path.join(work, "cut.mcap")
+    r = run("export", cut, "--mcap", cut_mcap)
+    check(r.returncode == 5 and "truncated" in r.stderr and "incomplete" in r.stderr,
+          f"a cut log: exit 5 with the reader's message ({r.returncode}: {r.stderr.strip()[:160]})")
+    check(os.path.exists(cut_mcap) and read(cut_mcap, "--export", scene, "--incomplete", "--frames-every", "1",
+                                            "--bus-log", cut),
+          "a cut log: every whole tick before the cut is in the file, marked incomplete")
+    bad = bytearray(data)
+    at = len(data) // 3
+    at = data.index(b"\xed\xa1\xda\x01", at)  # an event's sync word
+    bad[at] ^= 0xFF
+    damaged = os.path.join(work, "damaged.lcmlog")
+    with open(damaged, "wb") as f:
+        f.write(bad)
+    damaged_mcap = os.path.join(work, "damaged.mcap")
+    r = run("export", damaged, "--mcap", damaged_mcap)
+    check(r.returncode == 5 and "corrupt" in r.stderr, f"a damaged event: exit 5 ({r.returncode}: {r.stderr.strip()[:160]})")
+    check(os.path.exists(damaged_mcap) and read(damaged_mcap, "--export", scene, "--incomplete", "--frames-every", "1",
+                                                "--bus-log", damaged),
+          "a damaged event: the ticks before it are in the file, marked incomplete")
+    head = bytearray(data)
+    head[40] ^= 0xFF  # inside the scene event
+    headless = os.path.join(work, "headless.lcmlog")
+    with open(headless, "wb") as f:
+        f.write(head)
+    r = run("export", headless, "--mcap", os.path.join(work, "headless.mcap"))
+    check(r.returncode == 5 and not os.path.exists(os.path.join(work, "headless.mcap")),
+          f"a damaged scene event: exit 5, nothing written ({r.returncode}: {r.stderr.strip()[:160]})")
+    dump = os.path.join(work, "bus.candump")
+    with open(dump, "w") as f:
+        f.write("(0.000000) vcan0 123#DEADBEEF\n")
+    r = run("export", dump, "--mcap", os.path.join(work, "dump.mcap"))
+    check(r.returncode == 2 and "candump" in r.stderr, f"a candump log: refused with a message ({r.returncode})")
+    check(not [n for n in os.listdir(work) if ".tmp-" in n], "no temporary file left beside any MCAP file")
+    print(f"{'all checks passed' if not FAILS else str(len(FAILS)) + ' checks failed'} in {time.time() - t0:.1f} s")
+    return 1 if FAILS else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
