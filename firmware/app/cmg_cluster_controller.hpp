@@ -8,13 +8,14 @@
 // firmware/control/cmg_steering.hpp (ν = −A⁺ u: pseudo-inverse, singularity-robust or generalized
 // singularity-robust inverse, rate limit). The generalized inverse's dither time is t = tick · T_b, the tick of
 // the sensor frame the law runs on (deterministic, the same on host and target).
-// Signals (docs/models/cmg-cluster.md#signals):
-// Reads (SensorFrame): carrier_angle_rad = the spacecraft attitude q_WB as 3-2-1 angles (roll, pitch, yaw)
-//   [rad] (star tracker; rebuilt into q here, valid away from pitch ±90°); carrier_rate_rad_s = ω, body axes
-//   [rad/s] (gyro package); cluster_gimbal_angle_rad[i] = δ_i [rad] (the CMG electronics' gimbal encoders,
-//   wrapped to [−π, π)). The law does not need the gimbal rates cluster_gimbal_rate_rad_s.
-// Writes (ActuatorFrame): cluster_rate_command_rad_s[i] = ν_c,i [rad/s]; precession_brake = 0. The safe
-//   state's zeros command every gimbal to rest. Status: kRateLoopSaturated = the gimbal rates were scaled to max_rate;
+// Frames: the cluster's own (tools/devices/cmg_cluster/cmg_cluster_signals.toml, docs/icd/cmg_cluster.md,
+// docs/models/cmg-cluster.md#signals):
+// Reads attitude_rad = the spacecraft attitude q_WB as 3-2-1 angles (roll, pitch, yaw) [rad] (star tracker;
+//   rebuilt into q here, valid away from pitch ±90°); body_rate_rad_s = ω, body axes [rad/s] (gyro package);
+//   delta_rad[i] = δ_i [rad] (the CMG electronics' gimbal encoders, wrapped to [−π, π)). The law does not need
+//   the gimbal rates delta_rate_rad_s.
+// Writes gimbal_rate_command_rad_s[i] = ν_c,i [rad/s]. The safe state's zeros command every gimbal to rest
+//   (the cluster has no brake). Status: kRateLoopSaturated = the gimbal rates were scaled to max_rate;
 //   kGimbalLockGuard = the pseudo-inverse met a singular configuration (det(A Aᵀ)/h⁶ ≤ singular_floor) and
 //   commanded no rates — the CMG cluster's gimbal lock.
 // No drive (current loops): disabled. Rates: the law every control_divisor base ticks.
@@ -31,15 +32,18 @@
 #include "firmware/control/cmg_steering.hpp"
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/law_status_bits.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/cmg_cluster_frames.hpp"
 
 namespace gyrostab::firmware {
 
-static_assert(kMaxCmgUnits == static_cast<int>(msg::kClusterUnits), "the law steers the contract's cluster units");
+// The frames' units (the table's count = 4).
+inline constexpr int kCmgFrameUnits = static_cast<int>(sizeof(msg::cmg_cluster::SensorFrame::delta_rad) / sizeof(double));
+static_assert(kMaxCmgUnits == kCmgFrameUnits &&
+                  sizeof(msg::cmg_cluster::ActuatorFrame::gimbal_rate_command_rad_s) == kMaxCmgUnits * sizeof(double),
+              "the law steers the frames' cluster units");
 
 struct CmgClusterConfig {
-  RuntimeConfig runtime{};
+  RuntimeConfigOf<msg::cmg_cluster::SensorFrame> runtime{};
   CmgArray array{};
   AttitudeGains attitude{};
   SteeringParams steering{};
@@ -48,6 +52,9 @@ struct CmgClusterConfig {
 
 class CmgClusterLaw {
  public:
+  using SensorFrame = msg::cmg_cluster::SensorFrame;
+  using ActuatorFrame = msg::cmg_cluster::ActuatorFrame;
+
   explicit CmgClusterLaw(const CmgClusterConfig& c)
       : array_(c.array),
         gains_(c.attitude),
@@ -55,11 +62,10 @@ class CmgClusterLaw {
         reference_(c.reference),
         tick_period_s_(c.runtime.tick_period_s()) {}
 
-  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
-    const AttitudeQuaternion q = quaternion_from_euler321(
-        in.carrier_angle_rad[msg::kRoll], in.carrier_angle_rad[msg::kPitch], in.carrier_angle_rad[msg::kYaw]);
-    const double* w = in.carrier_rate_rad_s;
-    const double* delta = in.cluster_gimbal_angle_rad;
+  void control(const SensorFrame& in, ActuatorFrame& cmd) {
+    const AttitudeQuaternion q = quaternion_from_euler321(in.attitude_rad[0], in.attitude_rad[1], in.attitude_rad[2]);
+    const double* w = in.body_rate_rad_s;
+    const double* delta = in.delta_rad;
     double H[3];
     for (int k = 0; k < 3; ++k) H[k] = gains_.J[k][0] * w[0] + gains_.J[k][1] * w[1] + gains_.J[k][2] * w[2];
     if (gains_.gyroscopic_feedforward) {
@@ -73,8 +79,7 @@ class CmgClusterLaw {
     const SteeringOutput o = steer_cmg(array_, steering_, delta, torque_, t);
     measure_ = o.measure;
     lambda_ = o.lambda;
-    for (int i = 0; i < kMaxCmgUnits; ++i) cmd.cluster_rate_command_rad_s[i] = o.rate[i];
-    cmd.precession_brake = 0.0;
+    for (int i = 0; i < kMaxCmgUnits; ++i) cmd.gimbal_rate_command_rad_s[i] = o.rate[i];
     if (o.rate_limited) cmd.status |= bit(LawStatusBit::kRateLoopSaturated);
     if (o.singular) cmd.status |= bit(LawStatusBit::kGimbalLockGuard);
   }
@@ -108,8 +113,8 @@ class BasicCmgClusterController : public ControllerRuntime<CmgClusterLaw, Clock>
     const AttitudeQuaternion& q = c.reference;
     const double n = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
     if (!(std::fabs(n - 1.0) < 1e-9)) return ConfigCheck::refused("cmg cluster: the reference quaternion must be unit", n);
-    if (c.array.count > static_cast<int>(msg::kClusterUnits)) {
-      return ConfigCheck::refused("cmg cluster: the contract carries at most 4 gimbals", c.array.count);
+    if (c.array.count > kCmgFrameUnits) {
+      return ConfigCheck::refused("cmg cluster: the frames carry at most 4 gimbals", c.array.count);
     }
     if (is_robust(c.steering.law) && !(c.steering.lambda0 > 0.0)) {
       return ConfigCheck::refused("cmg cluster: the singularity-robust inverse needs lambda0 > 0", c.steering.lambda0);

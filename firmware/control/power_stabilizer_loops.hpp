@@ -23,7 +23,7 @@
 //
 // Voltage mode (kBackEmfVoltage; the book's single-axis stabilizer, one geared DC motor on axis 1,
 // (14.26)-(14.30); axis 2 carries no loop):
-//   commanded terminal voltage   u_cmd = −r β − d_c α'                     → motor_voltage_V[kAxis1]
+//   commanded terminal voltage   u_cmd = −r β − d_c α'                     → motor1_voltage_V
 // The motor itself (plant: sim/models/power_stabilizer.hpp, BackEmfMotor) turns it into
 //   M1^K = s (u_cmd − d_emf α') = s u,   u = −r β − d α',   d = d_emf + d_c            (14.26)-(14.27)
 // i.e. the book's d is the motor's back-EMF coefficient (incl. the gear ratio κ) plus any electronic rate
@@ -34,45 +34,44 @@
 //   AB λ³ + (A d2 + B D1) λ² + (H² + D1 d2) λ + H r s = 0,   r_max = (A d2 + B D1)(H² + D1 d2)/(AB H s),
 // which is H d / A when the bearings are frictionless. The back-EMF damping acts even when u_cmd saturates.
 //
-// Signals (the contract, firmware/msg/): reads SensorFrame gimbal_angle_rad[kAxis1] = α, [kAxis2] = β,
-// gimbal_rate_rad_s[kAxis1] = α', [kAxis2] = β' (rates relative to the carrier) — nothing else. Writes
-// ActuatorFrame gimbal_torque_Nm[kAxis1..2], motor_voltage_V[kAxis1..2] (the unused mode's pair is 0),
-// precession_brake = 0 (released), and its own status bits (PowerStabilizerStatusBit, 16-20; the other
-// status bits and the header — tick, time, sequence, sensor tick — are left to the caller). Refused gains ⇒
-// the safe command (firmware/fault/safe_state.hpp) with kGainsRefused on every tick.
+// Signals (the power stabilizer's frames: tools/devices/power_stabilizer/power_stabilizer_signals.toml,
+// docs/icd/power_stabilizer.md): reads alpha_rad = α, beta_rad = β, alpha_rate_rad_s = α', beta_rate_rad_s =
+// β' (rates relative to the carrier) — nothing else. Writes motor1_torque_Nm, motor2_torque_Nm,
+// motor1_voltage_V, motor2_voltage_V (the unused mode's values are 0) and its own status bits
+// (PowerStabilizerStatusBit, 16-20; the other status bits and the header — tick, time, sequence, sensor
+// tick — are left to the caller). Refused gains ⇒ the safe command (firmware/fault/safe_state.hpp) with
+// kGainsRefused on every tick.
 // Sampling: the Hurwitz check is for the continuous loop. At 1 kHz with a zero-order hold and one tick of
 // latency (≈ a pure delay τ = 1.5 ms) the nutation's phase lag ω_N τ is 0.084 rad for the S2 stabilizer
 // (ω_N = 56 rad/s); solving (14.23) with the loop terms × e^{−λτ} moves its nutation root from −0.16249 to
 // −0.16216 1/s and the bound k_max from 28.1250 to 28.1253 (the delayed damping and the delayed stiffness
 // nearly cancel). Keep ω_N τ ≪ 1; otherwise design with the sampled loop.
 // Elastic platform (14.38): the book's back-EMF term uses the platform rate φ'; the motor model produces it
-// itself, so with d_c = 0 nothing changes here; a non-zero d_c acts on gimbal_rate_rad_s[kAxis1].
+// itself, so with d_c = 0 nothing changes here; a non-zero d_c acts on alpha_rate_rad_s (the gimbal's α').
 // Resources: stateless (the configuration and the check are fixed at construction); compute() is O(1), no
 // heap, no exceptions, no I/O. Oracle: tests/oracle/power_stabilizer_test.cpp.
 // Docs: docs/models/power-stabilizer.md
 #pragma once
 
 #include <cmath>
-#include <cstddef>
 #include <cstdint>
 
 #include "firmware/control/hurwitz.hpp"
 #include "firmware/control/saturation.hpp"
 #include "firmware/fault/safe_state.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/power_stabilizer_frames.hpp"
 
 namespace gyrostab::firmware {
 
 enum class PowerStabilizerOutput : std::uint8_t {
-  kTorque,          // M1^K, M2^K → gimbal_torque_Nm (torque-controlled drives)
-  kBackEmfVoltage,  // u_cmd → motor_voltage_V[kAxis1] (voltage-driven geared motor, back-EMF damping)
+  kTorque,          // M1^K, M2^K → motor1_torque_Nm, motor2_torque_Nm (torque-controlled drives)
+  kBackEmfVoltage,  // u_cmd → motor1_voltage_V (voltage-driven geared motor, back-EMF damping)
 };
 
 // ActuatorFrame::status bits of this law (bits 16-31 are the control laws', msg/fault_bits.hpp).
 enum class PowerStabilizerStatusBit : std::uint32_t {
-  kTorque1Saturated = 1u << 16,  // |M1^K| was clipped to torque_limit_Nm[kAxis1] this tick
-  kTorque2Saturated = 1u << 17,  // |M2^K| was clipped to torque_limit_Nm[kAxis2] this tick
+  kTorque1Saturated = 1u << 16,  // |M1^K| was clipped to torque_limit_Nm[0] this tick
+  kTorque2Saturated = 1u << 17,  // |M2^K| was clipped to torque_limit_Nm[1] this tick
   kVoltageSaturated = 1u << 18,  // |u_cmd| was clipped to voltage_limit_V this tick
   kGainsRefused = 1u << 19,      // the start-up gain check failed: the safe command is output
   kNonFiniteCommand = 1u << 20,  // a sensor signal read was NaN/Inf: zero command this tick
@@ -97,7 +96,7 @@ struct PowerStabilizerConfig {
   double k2{20.0};                                         // M2^K per rad of α [N m/rad]
   double d1{0.5};                                          // commanded rate damping, axis 1 [N m s/rad]
   double d2{0.5};                                          // commanded rate damping, axis 2 [N m s/rad]
-  double torque_limit_Nm[msg::kGimbalAxes]{100.0, 100.0};  // |M^K| saturation per axis [N m]
+  double torque_limit_Nm[2]{100.0, 100.0};                 // |M^K| saturation per axis (1, 2) [N m]
 
   // Voltage mode: (14.26)-(14.27).
   double r{10.0};                // u_cmd per rad of β [V/rad]
@@ -155,7 +154,7 @@ inline GainCheck check_torque_loops(const PowerStabilizerConfig& c) {
   if (!finite(c.k1) || !finite(c.k2) || !non_negative_finite(c.d1) || !non_negative_finite(c.d2)) {
     return refuse(g, GainCheckVerdict::kInvalidGain, "k1, k2 must be finite and d1, d2 finite and >= 0");
   }
-  if (!positive_finite(c.torque_limit_Nm[msg::kAxis1]) || !positive_finite(c.torque_limit_Nm[msg::kAxis2])) {
+  if (!positive_finite(c.torque_limit_Nm[0]) || !positive_finite(c.torque_limit_Nm[1])) {
     return refuse(g, GainCheckVerdict::kInvalidLimit, "torque_limit_Nm must be > 0 and finite on both axes");
   }
   const double d1 = c.d1 + c.bearing_d1, d2 = c.d2 + c.bearing_d2;
@@ -279,21 +278,19 @@ class PowerStabilizerLoops {
   bool armed() const { return check_.accepted; }
 
   // One controller tick: the command from the sensor frame (see the header for the fields).
-  void compute(const msg::SensorFrame& in, msg::ActuatorFrame& out) const {
+  void compute(const msg::power_stabilizer::SensorFrame& in, msg::power_stabilizer::ActuatorFrame& out) const {
     out.status &= ~kPowerStabilizerStatusMask;
-    for (std::size_t i = 0; i < msg::kGimbalAxes; ++i) {
-      out.gimbal_torque_Nm[i] = 0.0;
-      out.motor_voltage_V[i] = 0.0;
-    }
-    out.precession_brake = 0.0;
+    out.motor1_torque_Nm = 0.0;
+    out.motor2_torque_Nm = 0.0;
+    out.motor1_voltage_V = 0.0;
+    out.motor2_voltage_V = 0.0;
     if (!check_.accepted) {
       command_safe_state(out);
       out.status |= bit(PowerStabilizerStatusBit::kGainsRefused);
       return;
     }
-    const double alpha = in.gimbal_angle_rad[msg::kAxis1], beta = in.gimbal_angle_rad[msg::kAxis2];
-    const double alpha_rate = in.gimbal_rate_rad_s[msg::kAxis1],
-                 beta_rate = in.gimbal_rate_rad_s[msg::kAxis2];
+    const double alpha = in.alpha_rad, beta = in.beta_rad;
+    const double alpha_rate = in.alpha_rate_rad_s, beta_rate = in.beta_rate_rad_s;
     if (!std::isfinite(alpha) || !std::isfinite(beta) || !std::isfinite(alpha_rate) ||
         !std::isfinite(beta_rate)) {
       out.status |= bit(PowerStabilizerStatusBit::kNonFiniteCommand);
@@ -301,14 +298,13 @@ class PowerStabilizerLoops {
     }
     if (config_.output == PowerStabilizerOutput::kTorque) {
       const StabilizationTorques m = stabilization_torques(config_, alpha, beta, alpha_rate, beta_rate);
-      out.gimbal_torque_Nm[msg::kAxis1] = saturate(m.M1, config_.torque_limit_Nm[msg::kAxis1], out.status,
-                                                   PowerStabilizerStatusBit::kTorque1Saturated);
-      out.gimbal_torque_Nm[msg::kAxis2] = saturate(m.M2, config_.torque_limit_Nm[msg::kAxis2], out.status,
-                                                   PowerStabilizerStatusBit::kTorque2Saturated);
+      out.motor1_torque_Nm = saturate(m.M1, config_.torque_limit_Nm[0], out.status,
+                                      PowerStabilizerStatusBit::kTorque1Saturated);
+      out.motor2_torque_Nm = saturate(m.M2, config_.torque_limit_Nm[1], out.status,
+                                      PowerStabilizerStatusBit::kTorque2Saturated);
     } else {
-      out.motor_voltage_V[msg::kAxis1] =
-          saturate(back_emf_voltage(config_, beta, alpha_rate), config_.voltage_limit_V, out.status,
-                   PowerStabilizerStatusBit::kVoltageSaturated);
+      out.motor1_voltage_V = saturate(back_emf_voltage(config_, beta, alpha_rate), config_.voltage_limit_V,
+                                      out.status, PowerStabilizerStatusBit::kVoltageSaturated);
     }
   }
 

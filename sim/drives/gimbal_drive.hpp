@@ -26,12 +26,12 @@
 // The per-step sequence of a scene runner (axis 2 of a GimbalGyro, state x = [α, β, α', β', H]):
 //   construction: p.BJ += drive.reflected_inertia(); p.d2 = p.r2 = 0; check(drive params) == nullptr;
 //                 require h < drive.max_stable_step(axis inertia)
-//   each controller tick: drive.command(actuator_frame, msg::kAxis2);            (held until the next)
+//   each controller tick: drive.command(voltage, torque, actuator_frame.status);   (held until the next)
 //   each plant step:      AxisLoad load = probe_axis_load(gyro, gyro.torques.M2, t, x, 3, drive.peak_torque());
 //                         DriveOutput out = drive.step(h, x[3], load);
 //                         if (out.hold) x[3] = 0.0;
 //                         gyro.torques.M2 = out.torque;  integrator.step(t, h, x);
-//   each sensor sample:   drive.write_sensors(sensor_frame, msg::kAxis2, x[1]);
+//   each sensor sample:   DriveReadings r = drive.readings(x[1]);   (the device puts them in its frame)
 //
 // Error of the explicit coupling (the held speed; the current error itself is bounded in
 // dc_torque_motor.hpp: |δi| ≤ k_e α h/R). Mechanically, the back-EMF damping b_e = N² k_t k_e/R and the
@@ -52,13 +52,10 @@
 #pragma once
 
 #include <cmath>
-#include <cstddef>
 #include <cstdint>
 #include <limits>
 
-#include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/fault_bits.hpp"
-#include "firmware/msg/sensor_frame.hpp"
 #include "sim/drives/bearing_friction.hpp"
 #include "sim/drives/dc_torque_motor.hpp"
 #include "sim/drives/gear_train.hpp"
@@ -68,8 +65,8 @@ namespace gyrostab::drives {
 
 struct GimbalDriveParams {
   enum class Command {
-    kVoltage,  // the controller commands the terminal voltage (ActuatorFrame::motor_voltage_V)
-    kTorque,   // current-regulated drive (CiA 402 CST): axis torque (ActuatorFrame::gimbal_torque_Nm),
+    kVoltage,  // the controller commands the terminal voltage (the device's voltage command of the axis)
+    kTorque,   // current-regulated drive (CiA 402 CST): axis torque (the device's torque command of the axis),
                // converted with the nominal N k_t (no load-side torque sensing: the gear loss η and the
                // friction make the delivered torque differ, as on a real drive)
   };
@@ -89,6 +86,13 @@ enum class DriveFault : std::uint8_t { kNone, kCommandTimeout };
 struct AxisLoad {
   double torque{0.0};   // τ_ext: net torque on the axis from everything but this drive [N m]
   double inertia{0.0};  // J: axis inertia including the reflected motor inertia [kg m²]; ≤ 0: unknown
+};
+
+// What the drive's sensors read at a sample, for the device to put into its sensor frame.
+struct DriveReadings {
+  double current_A{0.0};          // winding current at the end of the last step [A]
+  std::int32_t encoder_count{0};  // motor-shaft encoder count, wrapped to 32 bits as the frames carry it
+  bool fault{false};              // a latched drive fault: the frame's SensorStatusBit::kDriveFault
 };
 
 struct DriveOutput {
@@ -165,14 +169,14 @@ class GimbalDrive {
     enabled_ = enable;
     since_command_ = 0.0;
   }
-  // From the contract: motor_voltage_V[axis] or gimbal_torque_Nm[axis] by the configured Command; the
-  // bridge is disabled while the frame carries kSafeState.
-  void command(const msg::ActuatorFrame& f, std::size_t axis) {
-    const bool enable = !msg::has(f.status, msg::FaultBit::kSafeState);
+  // From an actuator frame: the axis's voltage [V] or torque [N m] command by the configured Command, and the
+  // frame's status word [bits]; the bridge is disabled while it carries kSafeState.
+  void command(double voltage_V, double torque_Nm, std::uint32_t status) {
+    const bool enable = !msg::has(status, msg::FaultBit::kSafeState);
     if (p_.command == Command::kVoltage) {
-      command_voltage(f.motor_voltage_V[axis], enable);
+      command_voltage(voltage_V, enable);
     } else {
-      command_torque(f.gimbal_torque_Nm[axis], enable);
+      command_torque(torque_Nm, enable);
     }
   }
   void clear_fault() {
@@ -215,11 +219,9 @@ class GimbalDrive {
     const std::int64_t c = encoder_.counts(gear_.motor_angle(axis_angle));
     return static_cast<std::int32_t>(static_cast<std::uint32_t>(c));
   }
-  // Writes motor_current_A[axis], encoder_count[axis] and kDriveFault into a sensor frame.
-  void write_sensors(msg::SensorFrame& f, std::size_t axis, double axis_angle) const {
-    f.motor_current_A[axis] = current();
-    f.encoder_count[axis] = encoder_count(axis_angle);
-    if (fault_ != DriveFault::kNone) f.status |= msg::bit(msg::SensorStatusBit::kDriveFault);
+  // The winding current, the encoder count of the axis angle [rad] and the fault flag, as sampled now.
+  DriveReadings readings(double axis_angle) const {
+    return {current(), encoder_count(axis_angle), fault_ != DriveFault::kNone};
   }
 
   bool active() const { return enabled_ && fault_ == DriveFault::kNone; }

@@ -4,10 +4,11 @@
 // sub-steps. Sensors: the attitude as 3-2-1 angles (star tracker, exact), the body rate (gyro package: white
 // noise density), the gimbal angles from absolute single-turn encoders (read in [−π, π)).
 //
-// Signals: SensorFrame carrier_angle_rad = (roll, pitch, yaw) of q_WB [rad]; carrier_rate_rad_s = ω [rad/s];
-// cluster_gimbal_angle_rad[i] = δ_i [rad] (encoder); cluster_gimbal_rate_rad_s[i] = δ_i' [rad/s] (the rate
-// loop's feedback, exact). ActuatorFrame cluster_rate_command_rad_s[i] = ν_c,i [rad/s]; precession_brake is
-// ignored (the safe state's zero rates hold the gimbals). Units beyond the cluster's count read 0.
+// Frames: the cluster's own (tools/devices/cmg_cluster/cmg_cluster_signals.toml, docs/icd/cmg_cluster.md): out,
+// attitude_rad = (roll, pitch, yaw) of q_WB [rad]; body_rate_rad_s = ω [rad/s]; delta_rad[i] = δ_i [rad]
+// (encoder); delta_rate_rad_s[i] = δ_i' [rad/s] (the rate loop's feedback, exact); in,
+// gimbal_rate_command_rad_s[i] = ν_c,i [rad/s] (the safe state's zero rates hold the gimbals: the cluster has
+// no brake). Units beyond the cluster's count read 0 and their commands are ignored.
 // Random streams of the scene seed (seeded_rng.hpp): 1 the body-rate noise.
 // Allocation-free after construction. Docs: docs/models/cmg-cluster.md. Oracle: tests/oracle/cmg_cluster_test.cpp.
 #pragma once
@@ -16,8 +17,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/cmg_cluster_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/cmg_cluster_spacecraft.hpp"
@@ -29,7 +29,10 @@
 
 namespace gyrostab::plants {
 
-static_assert(models::kMaxCmgs == static_cast<int>(msg::kClusterUnits), "the model's units are the contract's");
+static_assert(sizeof(msg::cmg_cluster::SensorFrame::delta_rad) == models::kMaxCmgs * sizeof(double) &&
+                  sizeof(msg::cmg_cluster::ActuatorFrame::gimbal_rate_command_rad_s) ==
+                      models::kMaxCmgs * sizeof(double),
+              "the model's units are the frames'");
 
 struct CmgClusterSensorParams {
   double rate_noise_density{1e-6};                  // body-rate white noise [rad/s/√Hz]
@@ -53,6 +56,8 @@ inline dynamics::Vec3 euler321_of(const dynamics::Quat& q) {
 
 class CmgClusterPlant {
  public:
+  using SensorFrame = msg::cmg_cluster::SensorFrame;
+  using ActuatorFrame = msg::cmg_cluster::ActuatorFrame;
   using Model = models::CmgClusterSpacecraft;
   using Dynamics = Model;
   using State = Model::State;
@@ -74,23 +79,23 @@ class CmgClusterPlant {
     x_ = Model::make_state(p.initial_rate, dynamics::Quat::Identity(), p.initial_delta);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
     const dynamics::Vec3 e = euler321_of(attitude());
     for (int k = 0; k < 3; ++k) {
-      f.carrier_angle_rad[k] = e[k];
-      f.carrier_rate_rad_s[k] = x_[Model::kOmega + k] + rate_noise_.sample(rng_rate_);
+      f.attitude_rad[k] = e[k];
+      f.body_rate_rad_s[k] = x_[Model::kOmega + k] + rate_noise_.sample(rng_rate_);
     }
-    for (int i = 0; i < static_cast<int>(msg::kClusterUnits); ++i) {
+    for (int i = 0; i < models::kMaxCmgs; ++i) {
       const bool unit = i < p_.model.geometry.count;
-      f.cluster_gimbal_angle_rad[i] = unit ? gimbal_reading(i) : 0.0;
-      f.cluster_gimbal_rate_rad_s[i] = unit ? x_[Model::kGimbalRate + i] : 0.0;
+      f.delta_rad[i] = unit ? gimbal_reading(i) : 0.0;
+      f.delta_rate_rad_s[i] = unit ? x_[Model::kGimbalRate + i] : 0.0;
     }
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void actuate(const ActuatorFrame& cmd) {
     double* nu = model_.inputs.rate_command;
-    for (int i = 0; i < models::kMaxCmgs; ++i) nu[i] = i < p_.model.geometry.count ? cmd.cluster_rate_command_rad_s[i] : 0.0;
+    for (int i = 0; i < models::kMaxCmgs; ++i) nu[i] = i < p_.model.geometry.count ? cmd.gimbal_rate_command_rad_s[i] : 0.0;
   }
 
   // Integrates [k, k + 1).

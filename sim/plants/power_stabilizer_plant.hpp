@@ -11,10 +11,12 @@
 //   Fidelity    FullGimbal (10.4) or PrecessionOnly, the reduced model P0 (10.19)-(10.22)
 //
 // State: models::PowerStabilizer's [α, β, α', β', H (, φ, φ')] (rad, rad/s, N m s), named accessors below;
-// the precession model has [α, β, H] and its rates are outputs. Inputs (ActuatorFrame):
-// gimbal_torque_Nm[kAxis1, kAxis2] (torque motors), motor_voltage_V[kAxis1] (back-EMF), motor_voltage_V[both]
-// (DC drives). Outputs (SensorFrame): encoder_count and gimbal_angle_rad, gimbal_rate_rad_s (rate gyros),
-// rotor_speed_rad_s; with DC drives motor_current_A.
+// the precession model has [α, β, H] and its rates are outputs. Frames: the power stabilizer's own
+// (tools/devices/power_stabilizer/power_stabilizer_signals.toml, docs/icd/power_stabilizer.md): in,
+// motor1_torque_Nm, motor2_torque_Nm (torque motors), motor1_voltage_V (back-EMF), motor1_voltage_V and
+// motor2_voltage_V (DC drives; their torques with a current-regulated drive); out, encoder1_count,
+// encoder2_count and alpha_rad, beta_rad from them, alpha_rate_rad_s, beta_rate_rad_s (rate gyros),
+// rotor_speed_rad_s; with DC drives motor1_current_A, motor2_current_A and a drive fault in the status.
 // Random streams of the scene seed: 1 the axis-1 rate gyro, 2 the axis-2 rate gyro.
 // The defaults of the parameters below are the scene's (docs/scenes.md#power_stabilizer).
 // Allocation-free after construction. Docs: docs/models/power-stabilizer.md. Oracles:
@@ -27,8 +29,8 @@
 #include <numbers>
 #include <type_traits>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "firmware/msg/fault_bits.hpp"
+#include "gyrostab_signals/power_stabilizer_frames.hpp"
 #include "sim/analysis/drive_peaks.hpp"
 #include "sim/drives/gimbal_drive.hpp"
 #include "sim/dynamics/substepping.hpp"
@@ -88,6 +90,8 @@ template <class Motor, class Structure, bool kDcDrive, template <class> class In
           class Fidelity = models::FullGimbal>
 class PowerStabilizerPlant {
  public:
+  using SensorFrame = msg::power_stabilizer::SensorFrame;
+  using ActuatorFrame = msg::power_stabilizer::ActuatorFrame;
   using Model = models::PowerStabilizer<motion::SceneBaseMotion, Motor, Structure, Fidelity>;
   using State = typename Model::State;
   using Inputs = models::PowerStabilizerInputs;
@@ -130,36 +134,41 @@ class PowerStabilizerPlant {
     }
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
     if constexpr (kDcDrive) {
       // Motor-side encoders (the axis-1 motor turns the platform φ when elastic); currents from the drives.
-      drive1_.write_sensors(f, msg::kAxis1, x_[kAngle1]);
-      drive2_.write_sensors(f, msg::kAxis2, beta_rad());
-      f.gimbal_angle_rad[msg::kAxis1] = axis_angle(drive1_, x_[kAngle1]);
-      f.gimbal_angle_rad[msg::kAxis2] = axis_angle(drive2_, beta_rad());
+      const drives::DriveReadings r1 = drive1_.readings(x_[kAngle1]);
+      const drives::DriveReadings r2 = drive2_.readings(beta_rad());
+      f.motor1_current_A = r1.current_A;
+      f.encoder1_count = static_cast<double>(r1.encoder_count);
+      f.motor2_current_A = r2.current_A;
+      f.encoder2_count = static_cast<double>(r2.encoder_count);
+      if (r1.fault || r2.fault) f.status |= msg::bit(msg::SensorStatusBit::kDriveFault);
+      f.alpha_rad = axis_angle(drive1_, x_[kAngle1]);
+      f.beta_rad = axis_angle(drive2_, beta_rad());
     } else {
       const std::int64_t c1 = encoder_.counts(alpha_rad()), c2 = encoder_.counts(beta_rad());
-      f.encoder_count[msg::kAxis1] = static_cast<std::int32_t>(c1);
-      f.encoder_count[msg::kAxis2] = static_cast<std::int32_t>(c2);
-      f.gimbal_angle_rad[msg::kAxis1] = encoder_.angle_of(c1);
-      f.gimbal_angle_rad[msg::kAxis2] = encoder_.angle_of(c2);
+      f.encoder1_count = static_cast<double>(static_cast<std::int32_t>(c1));
+      f.encoder2_count = static_cast<double>(static_cast<std::int32_t>(c2));
+      f.alpha_rad = encoder_.angle_of(c1);
+      f.beta_rad = encoder_.angle_of(c2);
     }
-    f.gimbal_rate_rad_s[msg::kAxis1] = gyro1_.measure(alpha_rate_rad_s(), rng1_);
-    f.gimbal_rate_rad_s[msg::kAxis2] = gyro2_.measure(beta_rate_rad_s(), rng2_);
+    f.alpha_rate_rad_s = gyro1_.measure(alpha_rate_rad_s(), rng1_);
+    f.beta_rate_rad_s = gyro2_.measure(beta_rate_rad_s(), rng2_);
     f.rotor_speed_rad_s = x_[Model::kSpin] / p_.gyro.CR;
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void actuate(const ActuatorFrame& cmd) {
     if constexpr (kDcDrive) {
-      drive1_.command(cmd, msg::kAxis1);
-      drive2_.command(cmd, msg::kAxis2);
+      drive1_.command(cmd.motor1_voltage_V, cmd.motor1_torque_Nm, cmd.status);
+      drive2_.command(cmd.motor2_voltage_V, cmd.motor2_torque_Nm, cmd.status);
     } else if constexpr (kBackEmf) {
-      model_.inputs.u1 = cmd.motor_voltage_V[msg::kAxis1];
+      model_.inputs.u1 = cmd.motor1_voltage_V;
       model_.inputs.M2K = 0.0;  // (14.28): no loop on axis 2
     } else {
-      model_.inputs.M1K = cmd.gimbal_torque_Nm[msg::kAxis1];
-      model_.inputs.M2K = cmd.gimbal_torque_Nm[msg::kAxis2];
+      model_.inputs.M1K = cmd.motor1_torque_Nm;
+      model_.inputs.M2K = cmd.motor2_torque_Nm;
     }
   }
 

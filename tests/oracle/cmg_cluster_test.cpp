@@ -172,8 +172,8 @@ TEST(CmgClusterSlew, ThirtyDegreesAboutXSettles) {
   firmware::CmgClusterController ctl(c);
   ASSERT_TRUE(ctl.armed()) << ctl.config_check().reason;
   const dynamics::Quat ref(c.reference.w, c.reference.x, c.reference.y, c.reference.z);
-  msg::SensorFrame f;
-  msg::ActuatorFrame a;
+  plants::CmgClusterPlant::SensorFrame f;
+  plants::CmgClusterPlant::ActuatorFrame a;
   const long n = 40000;
   for (long k = 0; k < n; ++k) {
     plant.sense(k, f);

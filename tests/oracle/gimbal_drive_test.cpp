@@ -12,9 +12,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/fault_bits.hpp"
-#include "firmware/msg/sensor_frame.hpp"
 #include "sim/drives/gimbal_drive.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/models/gimbal_gyro.hpp"
@@ -513,10 +511,9 @@ TEST(GimbalDrive, EncoderQuantizesTheMotorShaftAngle) {
   // 2^31 + 5 motor counts wrap to −2^31 + 5.
   const double theta_wrap = (2147483648.0 + 5.5) * lsb_axis;
   EXPECT_EQ(drive.encoder_count(theta_wrap), static_cast<std::int32_t>(-2147483648LL + 5));
-  msg::SensorFrame f;
-  drive.write_sensors(f, msg::kAxis2, theta_wrap);
-  EXPECT_EQ(f.encoder_count[msg::kAxis2], static_cast<std::int32_t>(-2147483648LL + 5));
-  EXPECT_EQ(f.status, 0u);
+  const drives::DriveReadings r = drive.readings(theta_wrap);
+  EXPECT_EQ(r.encoder_count, static_cast<std::int32_t>(-2147483648LL + 5));
+  EXPECT_FALSE(r.fault);
 }
 
 // Disabled, safe state in the actuator frame, or a watchdog timeout: bridge open, zero current and torque
@@ -526,19 +523,19 @@ TEST(GimbalDrive, DisabledFaultedOrSafeStateGivesZeroTorque) {
   p.command_timeout = 2.5e-3;
   Rig rig(p, 1.0);
   const double h = 1e-3;
-  msg::ActuatorFrame f;
-  f.motor_voltage_V[msg::kAxis1] = 12.0;
-  rig.drive.command(f, msg::kAxis1);
+  const double volts = 12.0, torque = 0.0;  // a voltage-mode drive takes the voltage, ignores the torque
+  std::uint32_t status = 0;
+  rig.drive.command(volts, torque, status);
   rig.step(h);
   EXPECT_GT(rig.drive.current(), 1.0);
-  f.status = msg::bit(msg::FaultBit::kSafeState);
-  rig.drive.command(f, msg::kAxis1);
+  status = msg::bit(msg::FaultBit::kSafeState);
+  rig.drive.command(volts, torque, status);
   DriveOutput out = rig.step(h);
   EXPECT_EQ(rig.drive.current(), 0.0);
   EXPECT_EQ(rig.drive.gear_torque(), 0.0);
   EXPECT_EQ(out.torque, 0.0);  // frictionless
-  f.status = 0;
-  rig.drive.command(f, msg::kAxis1);
+  status = 0;
+  rig.drive.command(volts, torque, status);
   rig.step(h);  // 1 ms since the command
   EXPECT_GT(rig.drive.current(), 1.0);
   // No further command (one missing frame): 2 ms ≤ 2.5 ms, still running.
@@ -548,14 +545,12 @@ TEST(GimbalDrive, DisabledFaultedOrSafeStateGivesZeroTorque) {
   out = rig.step(h);  // 3 ms > 2.5 ms: two missing actuator frames
   EXPECT_EQ(rig.drive.fault(), drives::DriveFault::kCommandTimeout);
   EXPECT_EQ(out.torque, 0.0);
-  msg::SensorFrame s;
-  rig.drive.write_sensors(s, msg::kAxis1, rig.x[0]);
-  EXPECT_TRUE(msg::has(s.status, msg::SensorStatusBit::kDriveFault));
-  rig.drive.command(f, msg::kAxis1);  // a command alone does not clear a latched fault
+  EXPECT_TRUE(rig.drive.readings(rig.x[0]).fault);  // a plant reports it as kDriveFault
+  rig.drive.command(volts, torque, status);  // a command alone does not clear a latched fault
   rig.step(h);
   EXPECT_EQ(rig.drive.current(), 0.0);
   rig.drive.clear_fault();
-  rig.drive.command(f, msg::kAxis1);
+  rig.drive.command(volts, torque, status);
   rig.step(h);
   EXPECT_GT(rig.drive.current(), 1.0);
 }
@@ -568,9 +563,7 @@ TEST(GimbalDrive, TorqueModeRegulatesTheCurrentToTheCommand) {
   p.motor.L = 1e-4;
   p.gear.ratio = 10.0;
   Rig rig(p, 5.0);
-  msg::ActuatorFrame f;
-  f.gimbal_torque_Nm[msg::kAxis2] = 2.0;  // i_ref = 2/(10 · 0.1) = 2 A
-  rig.drive.command(f, msg::kAxis2);
+  rig.drive.command(99.0, 2.0, 0u);  // i_ref = 2/(10 · 0.1) = 2 A; a torque-mode drive ignores the voltage
   const double h = 1e-3;
   rig.step(h);
   EXPECT_NEAR(rig.drive.current(), 2.0, 1e-12);

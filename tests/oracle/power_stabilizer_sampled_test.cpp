@@ -68,22 +68,22 @@ TEST(PowerStabilizerSampled, ProbedLawIsTheFirmwareLaw) {
     const firmware::PowerStabilizerLoops loops(c);
     ASSERT_TRUE(loops.armed());
     for (int n = 0; n < 100; ++n) {
-      msg::SensorFrame in{};
+      msg::power_stabilizer::SensorFrame in{};
       Eigen::Vector4d y(u(rng), u(rng), u(rng), u(rng));
-      in.gimbal_angle_rad[msg::kAxis1] = y[0];
-      in.gimbal_angle_rad[msg::kAxis2] = y[1];
-      in.gimbal_rate_rad_s[msg::kAxis1] = y[2];
-      in.gimbal_rate_rad_s[msg::kAxis2] = y[3];
-      msg::ActuatorFrame out{};
+      in.alpha_rad = y[0];
+      in.beta_rad = y[1];
+      in.alpha_rate_rad_s = y[2];
+      in.beta_rate_rad_s = y[3];
+      msg::power_stabilizer::ActuatorFrame out{};
       loops.compute(in, out);
       const Eigen::VectorXd cmd = law.D * y;
       if (mode == PowerStabilizerOutput::kTorque) {
         ASSERT_EQ(cmd.size(), 2);
-        EXPECT_NEAR(cmd[0], out.gimbal_torque_Nm[msg::kAxis1], 1e-13 * 100.0);
-        EXPECT_NEAR(cmd[1], out.gimbal_torque_Nm[msg::kAxis2], 1e-13 * 100.0);
+        EXPECT_NEAR(cmd[0], out.motor1_torque_Nm, 1e-13 * 100.0);
+        EXPECT_NEAR(cmd[1], out.motor2_torque_Nm, 1e-13 * 100.0);
       } else {
         ASSERT_EQ(cmd.size(), 1);
-        EXPECT_NEAR(cmd[0], out.motor_voltage_V[msg::kAxis1], 1e-13 * 10.0);
+        EXPECT_NEAR(cmd[0], out.motor1_voltage_V, 1e-13 * 10.0);
       }
     }
     EXPECT_EQ(law.F.rows(), 0);  // memoryless: compute() keeps no state

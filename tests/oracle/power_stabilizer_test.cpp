@@ -4,7 +4,8 @@
 // k1 = k2 = 20; d = 0 ⇒ nutation Re λ = +0.40; d1 = d2 = 0.5 ⇒ −0.1625; k = 500 ⇒ +8.95).
 //
 // Closed loop: the firmware law is evaluated continuously, inside the derivative (ClosedLoop below maps the
-// plant state to a SensorFrame, calls the law, and applies the ActuatorFrame to the plant's inputs), so the
+// plant state to the power stabilizer's sensor frame, calls the law, and applies its actuator frame to the
+// plant's inputs), so the
 // loop is the book's continuous one and sampling contributes nothing to the measured rates. (The real 1 kHz
 // loop with zero-order hold and one tick of latency, an effective delay of 1.5 ms, moves the S2 nutation root
 // from −0.16249 to −0.16216 1/s and its frequency by +0.02 % — computed from the delayed characteristic
@@ -30,8 +31,7 @@
 #include <vector>
 
 #include "firmware/control/power_stabilizer_loops.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/power_stabilizer_frames.hpp"
 #include "sim/analysis/zero_crossing_meter.hpp"
 #include "sim/dynamics/gyroscopic_exponential.hpp"
 #include "sim/dynamics/rk4.hpp"
@@ -44,6 +44,8 @@ namespace gyrostab {
 namespace power_stabilizer_test {
 
 using cd = std::complex<double>;
+using SensorFrame = msg::power_stabilizer::SensorFrame;
+using ActuatorFrame = msg::power_stabilizer::ActuatorFrame;
 using firmware::GainCheckVerdict;
 using firmware::PowerStabilizerConfig;
 using firmware::PowerStabilizerLoops;
@@ -104,15 +106,13 @@ models::GimbalGyroParams two_axis(double a, double b) {
 }
 
 template <class Plant>
-msg::SensorFrame sense(const Plant& plant, const typename Plant::State& x) {
+SensorFrame sense(const Plant& plant, const typename Plant::State& x) {
   const models::PowerStabilizerSignals s = plant.signals(x);
-  msg::SensorFrame f{};
-  f.gimbal_angle_rad[msg::kAxis1] = s.alpha;
-  f.gimbal_angle_rad[msg::kAxis2] = s.beta;
-  f.gimbal_rate_rad_s[msg::kAxis1] = s.alpha_rate;
-  f.gimbal_rate_rad_s[msg::kAxis2] = s.beta_rate;
-  f.carrier_angle_rad[msg::kRoll] = s.platform_angle;
-  f.carrier_rate_rad_s[msg::kRoll] = s.platform_rate;
+  SensorFrame f{};
+  f.alpha_rad = s.alpha;
+  f.beta_rad = s.beta;
+  f.alpha_rate_rad_s = s.alpha_rate;
+  f.beta_rate_rad_s = s.beta_rate;
   return f;
 }
 
@@ -125,11 +125,11 @@ struct ClosedLoop {
   Law law;
 
   void derivative(double t, const State& x, State& dx) const {
-    msg::ActuatorFrame command{};
+    ActuatorFrame command{};
     law(sense(plant, x), command);
-    plant.inputs.M1K = command.gimbal_torque_Nm[msg::kAxis1];
-    plant.inputs.M2K = command.gimbal_torque_Nm[msg::kAxis2];
-    plant.inputs.u1 = command.motor_voltage_V[msg::kAxis1];
+    plant.inputs.M1K = command.motor1_torque_Nm;
+    plant.inputs.M2K = command.motor2_torque_Nm;
+    plant.inputs.u1 = command.motor1_voltage_V;
     plant.derivative(t, x, dx);
   }
   void project(State& /*x*/) const {}
@@ -142,17 +142,16 @@ ClosedLoop<Plant, Law> close_loop(const Plant& plant, Law law) {
 
 // The unchecked torque law (for gains the start-up check refuses: S1, S3).
 auto unchecked_torque_law(const PowerStabilizerConfig& c) {
-  return [c](const msg::SensorFrame& in, msg::ActuatorFrame& out) {
+  return [c](const SensorFrame& in, ActuatorFrame& out) {
     const auto m =
-        firmware::stabilization_torques(c, in.gimbal_angle_rad[msg::kAxis1], in.gimbal_angle_rad[msg::kAxis2],
-                                        in.gimbal_rate_rad_s[msg::kAxis1], in.gimbal_rate_rad_s[msg::kAxis2]);
-    out.gimbal_torque_Nm[msg::kAxis1] = m.M1;
-    out.gimbal_torque_Nm[msg::kAxis2] = m.M2;
+        firmware::stabilization_torques(c, in.alpha_rad, in.beta_rad, in.alpha_rate_rad_s, in.beta_rate_rad_s);
+    out.motor1_torque_Nm = m.M1;
+    out.motor2_torque_Nm = m.M2;
   };
 }
 // The firmware's checked loops (compute(): gain check, law, saturation).
 auto firmware_law(const PowerStabilizerLoops& loops) {
-  return [&loops](const msg::SensorFrame& in, msg::ActuatorFrame& out) { loops.compute(in, out); };
+  return [&loops](const SensorFrame& in, ActuatorFrame& out) { loops.compute(in, out); };
 }
 
 // ---- measurement ----------------------------------------------------------------------------------------
@@ -470,13 +469,14 @@ TEST(PowerStabilizerGainCheck, RefusalsNameTheViolatedCondition) {
   const PowerStabilizerLoops refused(s_case(0.0, 20.0));
   EXPECT_FALSE(refused.armed());
   EXPECT_NE(std::string(refused.gain_check().reason).find("(14.23)"), std::string::npos);
-  msg::SensorFrame in{};
-  in.gimbal_angle_rad[msg::kAxis2] = 0.1;
-  msg::ActuatorFrame out{};
+  SensorFrame in{};
+  in.beta_rad = 0.1;
+  ActuatorFrame out{};
   refused.compute(in, out);
-  EXPECT_EQ(out.gimbal_torque_Nm[0], 0.0);
-  EXPECT_EQ(out.gimbal_torque_Nm[1], 0.0);
-  EXPECT_EQ(out.precession_brake, 1.0);
+  EXPECT_EQ(out.motor1_torque_Nm, 0.0);
+  EXPECT_EQ(out.motor2_torque_Nm, 0.0);
+  EXPECT_EQ(out.motor1_voltage_V, 0.0);
+  EXPECT_EQ(out.motor2_voltage_V, 0.0);
   EXPECT_TRUE(msg::has(out.status, msg::FaultBit::kSafeState));
   EXPECT_NE(out.status & firmware::bit(PowerStabilizerStatusBit::kGainsRefused), 0u);
 }
@@ -537,9 +537,8 @@ template <template <class> class Integrator>
 ModeEstimate simulate_back_emf(double r, double h, cd& root) {
   const BackEmfPlant plant(back_emf_gyro(), BackEmfMotor{2.0, 0.25, 10.0, 4e-3});
   const PowerStabilizerConfig c = back_emf_config(plant.outer_axis_inertia(), r);
-  auto law = [c](const msg::SensorFrame& in, msg::ActuatorFrame& out) {
-    out.motor_voltage_V[msg::kAxis1] =
-        firmware::back_emf_voltage(c, in.gimbal_angle_rad[msg::kAxis2], in.gimbal_rate_rad_s[msg::kAxis1]);
+  auto law = [c](const SensorFrame& in, ActuatorFrame& out) {
+    out.motor1_voltage_V = firmware::back_emf_voltage(c, in.beta_rad, in.alpha_rate_rad_s);
   };
   root = nutation_root(roots_14_29(plant.outer_axis_inertia(), 0.8, 50.0, 0.25, 2.0, r));
   const auto y = run_beta_rate<Integrator>(close_loop(plant, law),
@@ -679,37 +678,38 @@ TEST(PowerStabilizerLoopsUnit, TorqueLawSaturationAndStatusBits) {
   c.torque_limit_Nm[1] = 2.0;
   const PowerStabilizerLoops loops(c);
   ASSERT_TRUE(loops.armed());
-  msg::SensorFrame in{};
-  in.gimbal_angle_rad[msg::kAxis1] = 0.01;   // α
-  in.gimbal_angle_rad[msg::kAxis2] = 0.02;   // β
-  in.gimbal_rate_rad_s[msg::kAxis1] = 0.4;   // α'
-  in.gimbal_rate_rad_s[msg::kAxis2] = -0.2;  // β'
-  msg::ActuatorFrame out{};
+  SensorFrame in{};
+  in.alpha_rad = 0.01;          // α
+  in.beta_rad = 0.02;           // β
+  in.alpha_rate_rad_s = 0.4;    // α'
+  in.beta_rate_rad_s = -0.2;    // β'
+  ActuatorFrame out{};
   out.status =
       msg::bit(msg::FaultBit::kHoldingLastGood) | firmware::bit(PowerStabilizerStatusBit::kVoltageSaturated);
   out.tick = 7;
-  out.precession_brake = 1.0;
+  out.motor1_voltage_V = 5.0;  // a stale voltage: the law zeroes the unused mode's values
+  out.motor2_voltage_V = 5.0;
   loops.compute(in, out);
   // M1 = −20·0.02 − 0.5·0.4 = −0.6, M2 = 20·0.01 + 0.5·0.2 = 0.3: inside the limits.
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[0], -0.6);
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[1], 0.3);
-  EXPECT_EQ(out.motor_voltage_V[0], 0.0);
-  EXPECT_EQ(out.precession_brake, 0.0);
+  EXPECT_DOUBLE_EQ(out.motor1_torque_Nm, -0.6);
+  EXPECT_DOUBLE_EQ(out.motor2_torque_Nm, 0.3);
+  EXPECT_EQ(out.motor1_voltage_V, 0.0);
+  EXPECT_EQ(out.motor2_voltage_V, 0.0);
   EXPECT_EQ(out.tick, 7u);  // header untouched
   EXPECT_EQ(out.status, msg::bit(msg::FaultBit::kHoldingLastGood)) << "own bits cleared, others kept";
   // Saturation: β = 0.1 ⇒ M1 = −2.2 → −1; α = 0.2 ⇒ M2 = 4.1 → 2.
-  in.gimbal_angle_rad[msg::kAxis2] = 0.1;
-  in.gimbal_angle_rad[msg::kAxis1] = 0.2;
+  in.beta_rad = 0.1;
+  in.alpha_rad = 0.2;
   loops.compute(in, out);
-  EXPECT_EQ(out.gimbal_torque_Nm[0], -1.0);
-  EXPECT_EQ(out.gimbal_torque_Nm[1], 2.0);
+  EXPECT_EQ(out.motor1_torque_Nm, -1.0);
+  EXPECT_EQ(out.motor2_torque_Nm, 2.0);
   EXPECT_NE(out.status & firmware::bit(PowerStabilizerStatusBit::kTorque1Saturated), 0u);
   EXPECT_NE(out.status & firmware::bit(PowerStabilizerStatusBit::kTorque2Saturated), 0u);
   // A NaN that got past the fault monitor: zero command, flagged.
-  in.gimbal_rate_rad_s[msg::kAxis1] = std::nan("");
+  in.alpha_rate_rad_s = std::nan("");
   loops.compute(in, out);
-  EXPECT_EQ(out.gimbal_torque_Nm[0], 0.0);
-  EXPECT_EQ(out.gimbal_torque_Nm[1], 0.0);
+  EXPECT_EQ(out.motor1_torque_Nm, 0.0);
+  EXPECT_EQ(out.motor2_torque_Nm, 0.0);
   EXPECT_NE(out.status & firmware::bit(PowerStabilizerStatusBit::kNonFiniteCommand), 0u);
 }
 
@@ -720,34 +720,34 @@ TEST(PowerStabilizerLoopsUnit, VoltageLawSaturationAndStatusBits) {
   const PowerStabilizerLoops loops(c);
   ASSERT_TRUE(loops.armed()) << loops.gain_check().reason;
   EXPECT_NEAR(loops.gain_check().r_max, 50.0 * 0.35 / 1.0, 1e-12);  // d = d_emf + d_c
-  msg::SensorFrame in{};
-  in.gimbal_angle_rad[msg::kAxis2] = 0.5;
-  in.gimbal_rate_rad_s[msg::kAxis1] = 2.0;
-  msg::ActuatorFrame out{};
+  SensorFrame in{};
+  in.beta_rad = 0.5;
+  in.alpha_rate_rad_s = 2.0;
+  ActuatorFrame out{};
   loops.compute(in, out);
-  EXPECT_DOUBLE_EQ(out.motor_voltage_V[0], -10.0 * 0.5 - 0.1 * 2.0);
-  EXPECT_EQ(out.motor_voltage_V[1], 0.0);
-  EXPECT_EQ(out.gimbal_torque_Nm[0], 0.0);
-  EXPECT_EQ(out.gimbal_torque_Nm[1], 0.0);
+  EXPECT_DOUBLE_EQ(out.motor1_voltage_V, -10.0 * 0.5 - 0.1 * 2.0);
+  EXPECT_EQ(out.motor2_voltage_V, 0.0);
+  EXPECT_EQ(out.motor1_torque_Nm, 0.0);
+  EXPECT_EQ(out.motor2_torque_Nm, 0.0);
   EXPECT_EQ(out.status & firmware::kPowerStabilizerStatusMask, 0u);
-  in.gimbal_angle_rad[msg::kAxis2] = 3.0;
+  in.beta_rad = 3.0;
   loops.compute(in, out);
-  EXPECT_EQ(out.motor_voltage_V[0], -24.0);
+  EXPECT_EQ(out.motor1_voltage_V, -24.0);
   EXPECT_NE(out.status & firmware::bit(PowerStabilizerStatusBit::kVoltageSaturated), 0u);
 }
 
 // compute() is a pure function of (config, sensor frame) and allocates nothing.
 TEST(PowerStabilizerLoopsUnit, ComputeIsPureAndAllocationFree) {
   const PowerStabilizerLoops loops(s_case(0.5, 20.0));
-  msg::SensorFrame in{};
-  msg::ActuatorFrame a{}, b{};
+  SensorFrame in{};
+  ActuatorFrame a{}, b{};
   double sum = 0;
   testing::AllocationCounter counter;
   for (int i = 0; i < 100'000; ++i) {
-    in.gimbal_angle_rad[msg::kAxis1] = 1e-3 * std::sin(1e-3 * i);
-    in.gimbal_angle_rad[msg::kAxis2] = 1e-3 * std::cos(1e-3 * i);
+    in.alpha_rad = 1e-3 * std::sin(1e-3 * i);
+    in.beta_rad = 1e-3 * std::cos(1e-3 * i);
     loops.compute(in, a);
-    sum += a.gimbal_torque_Nm[0];
+    sum += a.motor1_torque_Nm;
   }
   EXPECT_EQ(counter.count(), 0u);
   loops.compute(in, b);

@@ -9,13 +9,16 @@
 
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "sim/drives/gimbal_drive.hpp"
 #include "sim/models/base_motion.hpp"
 #include "sim/models/power_stabilizer.hpp"
 #include "sim/random/seeded_rng.hpp"
 #include "sim/sensors/rate_gyro.hpp"
+#include "gyrostab_signals/power_stabilizer_outputs.hpp"
 #include "tools/commands.hpp"
+#include "tools/devices/power_stabilizer/power_stabilizer_scene.hpp"
 
 namespace gyrostab {
 namespace plant_composition_test {
@@ -151,6 +154,57 @@ TEST(PlantComposition, StateSizeAndStorageShrinkWithEveryComponentLeftOut) {
   EXPECT_TRUE(lists(sensed, "rate gyro noise"));
   EXPECT_TRUE(lists(sensed, "base motion"));
   EXPECT_TRUE(lists(sensed, "friction"));
+}
+
+// ---- the recorded columns: the signal table's, an option's only with it ------------------------------------
+
+std::vector<std::string> columns_with(tools::PowerDrive drive, tools::PowerMotor motor, tools::PowerStructure structure) {
+  tools::PowerStabilizerScene s;
+  s.drive = drive;
+  s.motor = motor;
+  s.structure = structure;
+  return tools::power_stabilizer_columns(s);
+}
+
+// Each option adds its columns after the always-recorded ones, in the table's order (the order signals.csv had
+// before the table existed); every option-only column of the table belongs to some variant.
+TEST(PlantComposition, EveryOptionAddsItsColumnsOnly) {
+  using tools::PowerDrive, tools::PowerMotor, tools::PowerStructure;
+  const std::vector<std::string> base{"alpha_rad",         "beta_rad",          "alpha_rate_rad_s",
+                                      "beta_rate_rad_s",   "M1_motor_Nm",       "M2_motor_Nm",
+                                      "M1_disturbance_Nm", "M2_disturbance_Nm", "status_bits"};
+  const std::vector<std::string> dc{"motor1_current_A", "motor2_current_A", "motor1_voltage_V", "motor2_voltage_V"};
+  auto plus = [&](std::vector<std::string> extra) {
+    std::vector<std::string> c = base;
+    c.insert(c.end(), extra.begin(), extra.end());
+    return c;
+  };
+  EXPECT_EQ(columns_with(PowerDrive::kTorque, PowerMotor::kTorque, PowerStructure::kRigid), base);
+  EXPECT_EQ(columns_with(PowerDrive::kDcMotor, PowerMotor::kTorque, PowerStructure::kRigid), plus(dc));
+  EXPECT_EQ(columns_with(PowerDrive::kTorque, PowerMotor::kBackEmf, PowerStructure::kRigid),
+            plus({"motor1_voltage_V"}));
+  EXPECT_EQ(columns_with(PowerDrive::kTorque, PowerMotor::kTorque, PowerStructure::kElastic), plus({"platform_rad"}));
+  std::vector<std::string> dc_elastic = dc;
+  dc_elastic.emplace_back("platform_rad");
+  EXPECT_EQ(columns_with(PowerDrive::kDcMotor, PowerMotor::kTorque, PowerStructure::kElastic), plus(dc_elastic));
+  EXPECT_EQ(columns_with(PowerDrive::kTorque, PowerMotor::kBackEmf, PowerStructure::kElastic),
+            plus({"motor1_voltage_V", "platform_rad"}));
+  for (const tools::ColumnSpec& c : msg::power_stabilizer::kColumns) {
+    if (c.when.empty()) continue;
+    bool taken = false;
+    for (const PowerDrive d : {PowerDrive::kTorque, PowerDrive::kDcMotor}) {
+      for (const PowerMotor m : {PowerMotor::kTorque, PowerMotor::kBackEmf}) {
+        for (const PowerStructure st : {PowerStructure::kRigid, PowerStructure::kElastic}) {
+          tools::PowerStabilizerScene s;
+          s.drive = d;
+          s.motor = m;
+          s.structure = st;
+          taken = taken || tools::power_stabilizer_column_option(s, c.when);
+        }
+      }
+    }
+    EXPECT_TRUE(taken) << c.name << ": no scene takes its option \"" << c.when << "\"";
+  }
 }
 
 // ---- runtime options that stay: zero costs nothing -------------------------------------------------------

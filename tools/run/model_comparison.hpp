@@ -4,7 +4,8 @@
 // compared signal from the trace, tick by tick. Both runs are deterministic, so the measured error is too.
 // Nothing is allocated per tick: the trace is sized before the first loop.
 //
-// A compared plant provides, besides the plant concept (plant_port.hpp):
+// A compared plant provides, besides the plant concept (plant_port.hpp; its typed frames and its Record, which
+// both wrappers forward):
 //   static constexpr int kComparedSignals;              // ≤ kMaxComparedSignals
 //   static const char* compared_signal_name(int i);
 //   double compared_signal(int i) const;                 // after advance(k): the value at the end of tick k
@@ -22,8 +23,6 @@
 #include <utility>
 #include <vector>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
 #include "tools/run/loop_outcome.hpp"
 
 namespace gyrostab::tools {
@@ -51,9 +50,13 @@ struct ComparisonTrace {
 template <class Device>
 class TracingDevice {
  public:
+  using SensorFrame = typename Device::SensorFrame;
+  using ActuatorFrame = typename Device::ActuatorFrame;
+  using Record = typename Device::Record;
+
   TracingDevice(Device& d, ComparisonTrace& trace) : d_(d), trace_(trace) {}
-  void sense(std::int64_t k, msg::SensorFrame& f) { d_.sense(k, f); }
-  void actuate(const msg::ActuatorFrame& c) { d_.actuate(c); }
+  void sense(std::int64_t k, SensorFrame& f) { d_.sense(k, f); }
+  void actuate(const ActuatorFrame& c) { d_.actuate(c); }
   void advance(std::int64_t k) {
     d_.advance(k);
     if (!trace_.due(k)) return;
@@ -65,7 +68,7 @@ class TracingDevice {
     trace_.samples = i + 1;
   }
   bool finite() const { return d_.finite(); }
-  void record(double* row) const { d_.record(row); }
+  void record(Record& row) const { d_.record(row); }
   nlohmann::json figures() const { return nlohmann::json::object(); }
 
  private:
@@ -91,6 +94,9 @@ template <class Device>
 class ComparingDevice {
  public:
   static_assert(Device::kComparedSignals <= kMaxComparedSignals);
+  using SensorFrame = typename Device::SensorFrame;
+  using ActuatorFrame = typename Device::ActuatorFrame;
+  using Record = typename Device::Record;
   static constexpr int kGuardedStates = Device::kGuardedStates;
   static const char* state_name(int i) { return Device::state_name(i); }
   double state_value(int i) const { return d_.state_value(i); }
@@ -99,8 +105,8 @@ class ComparingDevice {
   ComparingDevice(std::unique_ptr<const ComparisonTrace> trace, ComparisonSetup setup, Args&&... args)
       : d_(std::forward<Args>(args)...), trace_(*trace), owned_trace_(std::move(trace)), setup_(std::move(setup)) {}
 
-  void sense(std::int64_t k, msg::SensorFrame& f) { d_.sense(k, f); }
-  void actuate(const msg::ActuatorFrame& c) { d_.actuate(c); }
+  void sense(std::int64_t k, SensorFrame& f) { d_.sense(k, f); }
+  void actuate(const ActuatorFrame& c) { d_.actuate(c); }
   void advance(std::int64_t k) {
     d_.advance(k);
     if (!trace_.due(k)) return;
@@ -115,7 +121,7 @@ class ComparingDevice {
     ++compared_;
   }
   bool finite() const { return d_.finite(); }
-  void record(double* row) const { d_.record(row); }
+  void record(Record& row) const { d_.record(row); }
   nlohmann::json figures() const { return d_.figures(); }
   nlohmann::json error_estimate() const requires requires(const Device& d) { d.error_estimate(); } {
     return d_.error_estimate();

@@ -2,8 +2,9 @@
 // error against the commanded attitude (final, and the settling time into the band), the singularity measure
 // det(A Aᵀ)/h⁶ (its minimum along the run, when, and the time spent near-singular), the steering law's rate
 // limiting and singular ticks, the cluster's momentum against its envelope, the inertial angular momentum's
-// drift (conserved: no external torque acts) — the CSV columns, the half-step error estimate, and the scene's
-// plant and controller for the run modes.
+// drift (conserved: no external torque acts) — the CSV row (the signal table's columns by name,
+// tools/devices/cmg_cluster/cmg_cluster_signals.toml), the half-step error estimate, and the scene's plant and
+// controller for the run modes.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/cmg_cluster_outputs.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "tools/devices/cmg_cluster/cmg_cluster_scene.hpp"
 #include "sim/analysis/planar_mode_fit.hpp"
@@ -27,14 +29,6 @@ using Plant = plants::CmgClusterPlant;
 using Controller = firmware::BasicCmgClusterController<firmware::posix::MonotonicClock>;
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{
-      "attitude_error_deg", "omega_x_rad_s", "omega_y_rad_s", "omega_z_rad_s", "H_cmg_x_Nms", "H_cmg_y_Nms",
-      "H_cmg_z_Nms",        "delta_1_rad",   "delta_2_rad",   "delta_3_rad",   "delta_4_rad", "singularity_measure",
-      "status_bits"};
-  return c;
-}
-
 dynamics::Quat reference_of(const CmgClusterScene& s) {
   const auto& r = s.controller.reference;
   return dynamics::Quat(r.w, r.x, r.y, r.z);
@@ -42,6 +36,10 @@ dynamics::Quat reference_of(const CmgClusterScene& s) {
 
 class CmgClusterRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::cmg_cluster::Record;
+
   explicit CmgClusterRun(const CmgClusterScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -55,7 +53,7 @@ class CmgClusterRun {
     min_measure_ = plant_.singularity_measure();
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     plant_.sense(tick, f);
     // The approach, tick by tick: q, ω and the body-rate errors the law read (the noise's
     // response is simulated from the start: what the noise did before the final approach is still in it); the
@@ -69,9 +67,9 @@ class CmgClusterRun {
     const dynamics::Vec3 w = plant_.body_rate();
     const double sign = e.w() < 0.0 ? -1.0 : 1.0;
     approach_.push_back({{sign * e.vec()[0], sign * e.vec()[1], sign * e.vec()[2], w[0], w[1], w[2]},
-                         {f.carrier_rate_rad_s[0] - w[0], f.carrier_rate_rad_s[1] - w[1], f.carrier_rate_rad_s[2] - w[2]}});
+                         {f.body_rate_rad_s[0] - w[0], f.body_rate_rad_s[1] - w[1], f.body_rate_rad_s[2] - w[2]}});
   }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
     if ((cmd.status & firmware::bit(firmware::LawStatusBit::kRateLoopSaturated)) != 0u) ++rate_limited_ticks_;
@@ -108,16 +106,21 @@ class CmgClusterRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
-    row[0] = error_ * kDeg;
+  void record(Record& r) const {
+    r.attitude_error_deg = error_ * kDeg;
     const dynamics::Vec3 w = plant_.body_rate(), H = plant_.cmg_momentum_body();
-    for (int k = 0; k < 3; ++k) {
-      row[1 + k] = w[k];
-      row[4 + k] = H[k];
-    }
-    for (int i = 0; i < 4; ++i) row[7 + i] = plant_.delta(i);
-    row[11] = plant_.singularity_measure();
-    row[12] = static_cast<double>(last_.status);
+    r.omega_x_rad_s = w[0];
+    r.omega_y_rad_s = w[1];
+    r.omega_z_rad_s = w[2];
+    r.H_cmg_x_Nms = H[0];
+    r.H_cmg_y_Nms = H[1];
+    r.H_cmg_z_Nms = H[2];
+    r.delta_1_rad = plant_.delta(0);
+    r.delta_2_rad = plant_.delta(1);
+    r.delta_3_rad = plant_.delta(2);
+    r.delta_4_rad = plant_.delta(3);
+    r.singularity_measure = plant_.singularity_measure();
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -289,7 +292,7 @@ class CmgClusterRun {
   Plant plant_;
   dynamics::Quat reference_;
   dynamics::Vec3 L0_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   double error_{0.0};
   double last_outside_s_{0.0};
   double min_measure_{0.0}, min_measure_s_{0.0};
@@ -308,12 +311,10 @@ struct CmgClusterTraits {
   using Scene = CmgClusterScene;
   using Binding = CmgClusterRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
-  // The gimbal rate commands' limit is the steering's rate limit; the two gimbal drives' slots carry nothing.
+  // The gimbal rate commands' limit is the steering's rate limit.
   static hil::ActuatorLimits actuator_limits(const Scene& s) {
-    msg::ActuatorFrame l{};  // zero: no torque or voltage drive
-    for (double& r : l.cluster_rate_command_rad_s) r = s.controller.steering.max_rate * (1.0 + 1e-9);
-    l.precession_brake = 1.0;
+    msg::cmg_cluster::ActuatorFrame l = hil::ActuatorLimits::unlimited<msg::cmg_cluster::ActuatorFrame>();
+    for (double& r : l.gimbal_rate_command_rad_s) r = s.controller.steering.max_rate * (1.0 + 1e-9);
     return hil::ActuatorLimits::of(l);
   }
   static nlohmann::json limits(const Scene& s) {

@@ -54,23 +54,23 @@ CmgClusterSampled cmg_cluster_sampled(const CmgClusterScene& s, const plants::Cm
   // The law on the frame the plant would fill at ξ (no noise, exact encoders), with a body-rate error v.
   const auto command = [&](const Local& xi, const Eigen::Vector3d& v) {
     const Full x = full_of(x0, xi);
-    msg::SensorFrame f{};
+    firmware::CmgClusterLaw::SensorFrame f{};
     f.tick = tick;
     const dynamics::Vec3 e = plants::euler321_of(dynamics::Quat(x.segment<4>(Model::kQuat)));
     for (int k = 0; k < 3; ++k) {
-      f.carrier_angle_rad[k] = e[k];
-      f.carrier_rate_rad_s[k] = x[Model::kOmega + k] + v[k];
+      f.attitude_rad[k] = e[k];
+      f.body_rate_rad_s[k] = x[Model::kOmega + k] + v[k];
     }
     double d[4];
     for (int i = 0; i < 4; ++i) {
       d[i] = i < count ? x[Model::kDelta + i] : 0.0;
       d[i] = std::remainder(d[i], 2.0 * std::numbers::pi);
     }
-    for (int i = 0; i < 4; ++i) f.cluster_gimbal_angle_rad[i] = d[i];
-    msg::ActuatorFrame cmd{};
+    for (int i = 0; i < 4; ++i) f.delta_rad[i] = d[i];
+    firmware::CmgClusterLaw::ActuatorFrame cmd{};
     law.control(f, cmd);
-    return Eigen::Vector4d(cmd.cluster_rate_command_rad_s[0], cmd.cluster_rate_command_rad_s[1],
-                           cmd.cluster_rate_command_rad_s[2], cmd.cluster_rate_command_rad_s[3]);
+    return Eigen::Vector4d(cmd.gimbal_rate_command_rad_s[0], cmd.gimbal_rate_command_rad_s[1],
+                           cmd.gimbal_rate_command_rad_s[2], cmd.gimbal_rate_command_rad_s[3]);
   };
   // ξ' at ξ under the held rate commands u: the model's derivative, the quaternion's through φ's Jacobian.
   const auto rate = [&](const Local& xi, const Eigen::Vector4d& u) {

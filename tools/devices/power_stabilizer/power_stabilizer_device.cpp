@@ -1,9 +1,11 @@
 // The power stabilizer in the registry (tools/devices/registry.cpp), and its scene for the run modes.
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/power_stabilizer_outputs.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_scene.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_study.hpp"
 
@@ -18,6 +20,11 @@ class PowerStabilizerDeviceScene final : public DeviceScene {
 
   const LoopConfig& loop() const override { return s_->loop; }
   std::vector<std::string> columns() const override { return power_stabilizer_columns(*s_); }
+  std::vector<std::string> row_columns() const override {
+    std::vector<std::string> c;
+    for (const ColumnSpec& spec : msg::power_stabilizer::kColumns) c.emplace_back(spec.name);
+    return c;
+  }
   nlohmann::json limits() const override {
     const auto& l = s_->controller.loops;
     if (s_->back_emf()) return {{"motor_voltage_limit_V", l.voltage_limit_V}};
@@ -46,16 +53,18 @@ class PowerStabilizerDeviceScene final : public DeviceScene {
 
 }  // namespace
 
+bool power_stabilizer_column_option(const PowerStabilizerScene& s, std::string_view when) {
+  if (when == "dc_motor") return s.dc_drive();
+  if (when == "voltage_driven") return s.dc_drive() || s.back_emf();
+  if (when == "elastic") return s.elastic();
+  return false;
+}
+
 std::vector<std::string> power_stabilizer_columns(const PowerStabilizerScene& s) {
-  std::vector<std::string> c{"alpha_rad", "beta_rad", "alpha_rate_rad_s", "beta_rate_rad_s", "M1_motor_Nm",
-                             "M2_motor_Nm", "M1_disturbance_Nm", "M2_disturbance_Nm", "status_bits"};
-  if (s.dc_drive()) {
-    for (const char* n : {"motor1_current_A", "motor2_current_A", "motor1_voltage_V", "motor2_voltage_V"}) {
-      c.emplace_back(n);
-    }
+  std::vector<std::string> c;
+  for (const ColumnSpec& spec : msg::power_stabilizer::kColumns) {
+    if (spec.when.empty() || power_stabilizer_column_option(s, spec.when)) c.emplace_back(spec.name);
   }
-  if (s.back_emf()) c.emplace_back("motor1_voltage_V");
-  if (s.elastic()) c.emplace_back("platform_rad");
   return c;
 }
 

@@ -3,8 +3,10 @@
 // power_stabilizer_checks.hpp, nutation_window) by a recurrence fitted to α[k] (beside the roots of
 // (14.23)/(14.29) at that window's operating point, `_predicted`, and of the sampled loop,
 // `_predicted_sampled`), the steady deflections beside (14.21), the angles' and
-// the drives' peaks, the periodic drift over long runs, the half-step error estimate — the CSV columns and
-// the report blocks. One template over the plant's options; the variants are instantiated in
+// the drives' peaks, the periodic drift over long runs, the half-step error estimate — the CSV row (the signal
+// table's columns by name, tools/devices/power_stabilizer/power_stabilizer_signals.toml; those of options the
+// variant lacks stay 0 and are not recorded) and the report blocks. One template over the plant's options; the
+// variants are instantiated in
 // power_stabilizer_{rigid,dc,elastic,precession}.cpp, one translation unit per group.
 #pragma once
 
@@ -17,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "gyrostab_signals/power_stabilizer_outputs.hpp"
 #include "sim/analysis/drive_peaks.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/linear_prediction_fit.hpp"
@@ -37,6 +40,9 @@ class PowerStabilizerRun {
  public:
   using Plant = plants::PowerStabilizerPlant<Motor, Structure, kDcDrive, Integrator, Fidelity>;
   using Model = typename Plant::Model;
+  using SensorFrame = typename Plant::SensorFrame;
+  using ActuatorFrame = typename Plant::ActuatorFrame;
+  using Record = msg::power_stabilizer::Record;
   static constexpr bool kElastic = Plant::kElastic;
   static constexpr bool kBackEmf = Plant::kBackEmf;
   static constexpr bool kPrecession = Plant::kPrecession;
@@ -63,15 +69,15 @@ class PowerStabilizerRun {
         window_(static_cast<std::int64_t>(std::min(s.plant.disturbance.t1, s.plant.disturbance.t2) / s.loop.tick_s()),
                 static_cast<std::int64_t>(1.0 / s.loop.tick_s())) {}
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     plant_.sense(tick, f);
     // What the firmware's frame got wrong (encoder counts, rate noise): inputs of the loop for the fit.
-    sensor_error_[0] = f.gimbal_angle_rad[msg::kAxis1] - plant_.alpha_rad();
-    sensor_error_[1] = f.gimbal_angle_rad[msg::kAxis2] - plant_.beta_rad();
-    sensor_error_[2] = f.gimbal_rate_rad_s[msg::kAxis1] - plant_.alpha_rate_rad_s();
-    sensor_error_[3] = f.gimbal_rate_rad_s[msg::kAxis2] - plant_.beta_rate_rad_s();
+    sensor_error_[0] = f.alpha_rad - plant_.alpha_rad();
+    sensor_error_[1] = f.beta_rad - plant_.beta_rad();
+    sensor_error_[2] = f.alpha_rate_rad_s - plant_.alpha_rate_rad_s();
+    sensor_error_[3] = f.beta_rate_rad_s - plant_.beta_rate_rad_s();
   }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -121,34 +127,34 @@ class PowerStabilizerRun {
     }
   }
 
-  void record(double* row) const {
-    row[0] = plant_.alpha_rad();
-    row[1] = plant_.beta_rad();
-    row[2] = plant_.alpha_rate_rad_s();
-    row[3] = plant_.beta_rate_rad_s();
+  void record(Record& r) const {
+    r.alpha_rad = plant_.alpha_rad();
+    r.beta_rad = plant_.beta_rad();
+    r.alpha_rate_rad_s = plant_.alpha_rate_rad_s();
+    r.beta_rate_rad_s = plant_.beta_rate_rad_s();
     if constexpr (kDcDrive) {
-      row[4] = plant_.drive1().gear_torque();  // what the motors put on the axes through the gears
-      row[5] = plant_.drive2().gear_torque();
+      r.M1_motor_Nm = plant_.drive1().gear_torque();  // what the motors put on the axes through the gears
+      r.M2_motor_Nm = plant_.drive2().gear_torque();
     } else if constexpr (kBackEmf) {
-      row[4] = kPrecession ? s_.plant.motor.s * plant_.inputs().u1 - s_.plant.motor.viscous() * plant_.alpha_rate_rad_s()
-                           : plant_.motor1_torque_Nm(0.0);
-      row[5] = 0.0;
+      r.M1_motor_Nm = kPrecession ? s_.plant.motor.s * plant_.inputs().u1 -
+                                        s_.plant.motor.viscous() * plant_.alpha_rate_rad_s()
+                                  : plant_.motor1_torque_Nm(0.0);
+      r.M2_motor_Nm = 0.0;
     } else {
-      row[4] = last_.gimbal_torque_Nm[msg::kAxis1];
-      row[5] = last_.gimbal_torque_Nm[msg::kAxis2];
+      r.M1_motor_Nm = last_.motor1_torque_Nm;
+      r.M2_motor_Nm = last_.motor2_torque_Nm;
     }
-    row[6] = plant_.disturbance1_Nm();
-    row[7] = plant_.disturbance2_Nm();
-    row[8] = static_cast<double>(last_.status);
-    int i = 9;
+    r.M1_disturbance_Nm = plant_.disturbance1_Nm();
+    r.M2_disturbance_Nm = plant_.disturbance2_Nm();
+    r.status_bits = static_cast<double>(last_.status);
     if constexpr (kDcDrive) {
-      row[i++] = plant_.drive1().current();
-      row[i++] = plant_.drive2().current();
-      row[i++] = plant_.drive1().last_interval().voltage_mean;
-      row[i++] = plant_.drive2().last_interval().voltage_mean;
+      r.motor1_current_A = plant_.drive1().current();
+      r.motor2_current_A = plant_.drive2().current();
+      r.motor1_voltage_V = plant_.drive1().last_interval().voltage_mean;
+      r.motor2_voltage_V = plant_.drive2().last_interval().voltage_mean;
     }
-    if constexpr (kBackEmf) row[i++] = plant_.inputs().u1;
-    if constexpr (kElastic) row[i++] = plant_.platform_rad();
+    if constexpr (kBackEmf) r.motor1_voltage_V = plant_.inputs().u1;
+    if constexpr (kElastic) r.platform_rad = plant_.platform_rad();
   }
 
   nlohmann::json figures() const {
@@ -329,7 +335,7 @@ class PowerStabilizerRun {
   std::int64_t meter_every_;
   analysis::LinearPredictionMeter fit_;
   std::array<double, 4> sensor_error_{};
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   analysis::RunningStats alpha_, beta_;
   analysis::DrivePeaks peaks_;
   analysis::HalfStepWindow<Model, models::PowerStabilizerInputs> window_;

@@ -25,22 +25,21 @@ analysis::LinearPlant power_stabilizer_linear_plant(const firmware::PowerStabili
 
 analysis::DiscreteLaw power_stabilizer_probed_law(const firmware::PowerStabilizerConfig& l) {
   firmware::PowerStabilizerConfig c = l;
-  c.torque_limit_Nm[msg::kAxis1] = c.torque_limit_Nm[msg::kAxis2] = c.voltage_limit_V = 1e300;
+  c.torque_limit_Nm[0] = c.torque_limit_Nm[1] = c.voltage_limit_V = 1e300;
   const firmware::PowerStabilizerLoops law(c);
   const bool emf = l.output == firmware::PowerStabilizerOutput::kBackEmfVoltage;
   Eigen::MatrixXd D = Eigen::MatrixXd::Zero(emf ? 1 : 2, 4);
   for (int j = 0; j < 4; ++j) {
-    msg::SensorFrame in{};
-    double* slot[4] = {&in.gimbal_angle_rad[msg::kAxis1], &in.gimbal_angle_rad[msg::kAxis2],
-                       &in.gimbal_rate_rad_s[msg::kAxis1], &in.gimbal_rate_rad_s[msg::kAxis2]};
+    msg::power_stabilizer::SensorFrame in{};
+    double* slot[4] = {&in.alpha_rad, &in.beta_rad, &in.alpha_rate_rad_s, &in.beta_rate_rad_s};
     *slot[j] = 1.0;
-    msg::ActuatorFrame out{};
+    msg::power_stabilizer::ActuatorFrame out{};
     law.compute(in, out);
     if (emf) {
-      D(0, j) = out.motor_voltage_V[msg::kAxis1];
+      D(0, j) = out.motor1_voltage_V;
     } else {
-      D(0, j) = out.gimbal_torque_Nm[msg::kAxis1];
-      D(1, j) = out.gimbal_torque_Nm[msg::kAxis2];
+      D(0, j) = out.motor1_torque_Nm;
+      D(1, j) = out.motor2_torque_Nm;
     }
   }
   return analysis::DiscreteLaw::gain(D);

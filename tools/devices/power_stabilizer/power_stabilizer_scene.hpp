@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "firmware/app/power_stabilizer_controller.hpp"
@@ -79,8 +80,13 @@ bool read_power_stabilizer_scene(SceneReader& r, PowerStabilizerScene& s);
 std::unique_ptr<DeviceScene> read_power_stabilizer(SceneReader& r);
 SceneDoc power_stabilizer_doc();
 
-// The CSV columns of the scene's variant (they depend on the drive, the motor and the structure only).
+// The CSV columns of the scene's variant: the signal table's columns (power_stabilizer_signals.toml) without
+// those `when` an option the scene does not take (they depend on the drive, the motor and the structure only).
 std::vector<std::string> power_stabilizer_columns(const PowerStabilizerScene& s);
+// Whether the scene takes a column's `when` option: "dc_motor" ([drive] kind = "dc_motor"), "voltage_driven"
+// (the axis-1 motor takes a voltage: dc_motor drives or [gyro] motor = "back_emf"), "elastic"; false for any
+// other.
+bool power_stabilizer_column_option(const PowerStabilizerScene& s, std::string_view when);
 
 // The plant of each variant group, one translation unit each (power_stabilizer_<group>.cpp).
 std::unique_ptr<PlantPort> make_power_stabilizer_rigid(const PowerStabilizerScene& s);

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/power_stabilizer_outputs.hpp"
 #include "sim/dynamics/gyroscopic_exponential.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "tools/accuracy/accuracy_study.hpp"
@@ -29,8 +30,11 @@ class RecordingPlant {
   using Plant = plants::PowerStabilizerPlant<models::TorqueMotors, models::RigidStructure, false, Integrator>;
   RecordingPlant(const PowerStabilizerScene& s, PowerStabilizerStudySetup& out)
       : plant_(s.plant, s.loop.plant_timing()), out_(out) {}
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
-  void actuate(const msg::ActuatorFrame& cmd) { plant_.actuate(cmd); }
+  using SensorFrame = typename Plant::SensorFrame;
+  using ActuatorFrame = typename Plant::ActuatorFrame;
+  using Record = msg::power_stabilizer::Record;
+  void sense(std::int64_t tick, SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const ActuatorFrame& cmd) { plant_.actuate(cmd); }
   void advance(std::int64_t tick) {
     plant_.begin_tick(tick);
     plant_.integrate(tick, peaks_);
@@ -39,7 +43,7 @@ class RecordingPlant {
     out_.states.push_back(plant_.state());
   }
   bool finite() const { return plant_.finite(); }
-  void record(double*) const {}
+  void record(Record&) const {}
   nlohmann::json figures() const { return nlohmann::json::object(); }
 
  private:
