@@ -197,6 +197,16 @@ msg::gyro_vertical::SensorFrame gyro_vertical_frame(std::uint64_t k) {
   return f;
 }
 
+msg::gyrocompass::SensorFrame gyrocompass_frame(std::uint64_t k) {
+  msg::gyrocompass::SensorFrame f = frame_header<msg::gyrocompass::SensorFrame>(k);
+  f.indicated_heading_rad = 0.3;
+  f.follow_up_rad = -0.3;
+  f.level_rad = -0.02;
+  f.azimuth_rate_rad_s = 1e-3;
+  f.elevation_rate_rad_s = -2e-3;
+  return f;
+}
+
 // The shared legacy frame (the devices below still on it).
 msg::SensorFrame frame(std::uint64_t k) {
   msg::SensorFrame f = frame_header<msg::SensorFrame>(k);
@@ -215,6 +225,9 @@ struct Torques {
   double m1, m2;
 };
 Torques torques(const msg::gyro_vertical::ActuatorFrame& out) { return {out.torquer1_Nm, out.torquer2_Nm}; }
+Torques torques(const msg::gyrocompass::ActuatorFrame& out) {
+  return {out.vertical_torquer_Nm, out.east_torquer_Nm};
+}
 Torques torques(const msg::ActuatorFrame& out) {
   return {out.gimbal_torque_Nm[msg::kAxis1], out.gimbal_torque_Nm[msg::kAxis2]};
 }
@@ -270,13 +283,13 @@ TEST(GyroInstrumentControllers, GyrocompassMapsTheLevelSensor) {
   cfg.law = {2.0, 0.0015, 0.06, 0.1};
   GyrocompassController c(cfg);
   ASSERT_TRUE(c.armed());
-  msg::SensorFrame f = frame(0);
-  msg::ActuatorFrame out{};
+  msg::gyrocompass::SensorFrame f = gyrocompass_frame(0);
+  msg::gyrocompass::ActuatorFrame out{};
   c.step(0, &f, out);
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis1], -0.0015 * -0.02);  // M1 = −f β_lvl
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis2], -0.06 * -0.02);    // M2 = −c_e β_lvl
+  EXPECT_DOUBLE_EQ(out.vertical_torquer_Nm, -0.0015 * -0.02);  // M1 = −f β_lvl
+  EXPECT_DOUBLE_EQ(out.east_torquer_Nm, -0.06 * -0.02);        // M2 = −c_e β_lvl
   GyrocompassController h(cfg);
-  expect_hold_then_safe(h, frame);
+  expect_hold_then_safe(h, gyrocompass_frame);
 }
 
 TEST(GyroInstrumentControllers, InertialPlatformRunsTheSchulerLoopOnTheCarrierTilts) {
@@ -307,12 +320,12 @@ TEST(GyroInstrumentControllers, NoHeapOverAMillionSteps) {
   GyrocompassController b(gc);
   InertialPlatformController c(ip);
   msg::gyro_vertical::ActuatorFrame out_gv{};
-  msg::ActuatorFrame out_gc{};
+  msg::gyrocompass::ActuatorFrame out_gc{};
   msg::ActuatorFrame out_ip{};
   const std::uint64_t before = testing::allocations_so_far();
   for (std::uint64_t k = 0; k < 1'000'000; ++k) {
     msg::gyro_vertical::SensorFrame f_gv = gyro_vertical_frame(k);
-    msg::SensorFrame f_gc = frame(k);
+    msg::gyrocompass::SensorFrame f_gc = gyrocompass_frame(k);
     msg::SensorFrame f_ip = frame(k);
     const bool drop = (k % 1000) == 999;
     a.step(k, drop ? nullptr : &f_gv, out_gv);
