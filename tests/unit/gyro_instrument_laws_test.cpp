@@ -207,16 +207,14 @@ msg::gyrocompass::SensorFrame gyrocompass_frame(std::uint64_t k) {
   return f;
 }
 
-// The shared legacy frame (the devices below still on it).
-msg::SensorFrame frame(std::uint64_t k) {
-  msg::SensorFrame f = frame_header<msg::SensorFrame>(k);
-  f.gimbal_angle_rad[msg::kAxis1] = 0.01;
-  f.gimbal_angle_rad[msg::kAxis2] = -0.02;
-  f.gimbal_rate_rad_s[msg::kAxis1] = 1e-3;
-  f.gimbal_rate_rad_s[msg::kAxis2] = -2e-3;
-  f.carrier_angle_rad[msg::kRoll] = 3e-4;
-  f.carrier_angle_rad[msg::kPitch] = -1e-4;
-  f.carrier_rate_rad_s[msg::kYaw] = 0.02;
+msg::inertial_platform::SensorFrame inertial_platform_frame(std::uint64_t k) {
+  msg::inertial_platform::SensorFrame f = frame_header<msg::inertial_platform::SensorFrame>(k);
+  f.theta1_rad = 3e-4;
+  f.theta2_rad = -1e-4;
+  f.gyro_angle1_rad = 0.01;
+  f.gyro_angle2_rad = -0.02;
+  f.gyro_rate1_rad_s = 1e-3;
+  f.gyro_rate2_rad_s = -2e-3;
   return f;
 }
 
@@ -228,9 +226,7 @@ Torques torques(const msg::gyro_vertical::ActuatorFrame& out) { return {out.torq
 Torques torques(const msg::gyrocompass::ActuatorFrame& out) {
   return {out.vertical_torquer_Nm, out.east_torquer_Nm};
 }
-Torques torques(const msg::ActuatorFrame& out) {
-  return {out.gimbal_torque_Nm[msg::kAxis1], out.gimbal_torque_Nm[msg::kAxis2]};
-}
+Torques torques(const msg::inertial_platform::ActuatorFrame& out) { return {out.torquer1_Nm, out.torquer2_Nm}; }
 
 // A missing frame is held once, then the safe state: zero torque.
 template <class Controller, class MakeFrame>
@@ -299,15 +295,15 @@ TEST(GyroInstrumentControllers, InertialPlatformRunsTheSchulerLoopOnTheCarrierTi
   cfg.law.initial_rate[0] = 1e-5;
   InertialPlatformController c(cfg);
   ASSERT_TRUE(c.armed());
-  msg::SensorFrame f = frame(0);
-  msg::ActuatorFrame out{};
+  msg::inertial_platform::SensorFrame f = inertial_platform_frame(0);
+  msg::inertial_platform::ActuatorFrame out{};
   c.step(0, &f, out);
   const double g0R = cfg.law.gravity_scale / cfg.law.radius * 5e-3;
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis1], -0.05 * (1e-5 - g0R * 3e-4));
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis2], -0.05 * (0.0 - g0R * -1e-4));
+  EXPECT_DOUBLE_EQ(out.torquer1_Nm, -0.05 * (1e-5 - g0R * 3e-4));
+  EXPECT_DOUBLE_EQ(out.torquer2_Nm, -0.05 * (0.0 - g0R * -1e-4));
   EXPECT_DOUBLE_EQ(c.velocity_estimate(0), cfg.law.radius * (1e-5 - g0R * 3e-4));
   InertialPlatformController h(cfg);
-  expect_hold_then_safe(h, frame);
+  expect_hold_then_safe(h, inertial_platform_frame);
 }
 
 TEST(GyroInstrumentControllers, NoHeapOverAMillionSteps) {
@@ -321,12 +317,12 @@ TEST(GyroInstrumentControllers, NoHeapOverAMillionSteps) {
   InertialPlatformController c(ip);
   msg::gyro_vertical::ActuatorFrame out_gv{};
   msg::gyrocompass::ActuatorFrame out_gc{};
-  msg::ActuatorFrame out_ip{};
+  msg::inertial_platform::ActuatorFrame out_ip{};
   const std::uint64_t before = testing::allocations_so_far();
   for (std::uint64_t k = 0; k < 1'000'000; ++k) {
     msg::gyro_vertical::SensorFrame f_gv = gyro_vertical_frame(k);
     msg::gyrocompass::SensorFrame f_gc = gyrocompass_frame(k);
-    msg::SensorFrame f_ip = frame(k);
+    msg::inertial_platform::SensorFrame f_ip = inertial_platform_frame(k);
     const bool drop = (k % 1000) == 999;
     a.step(k, drop ? nullptr : &f_gv, out_gv);
     b.step(k, drop ? nullptr : &f_gc, out_gc);
