@@ -5,17 +5,18 @@
 // Law: firmware/control/directional_gyro_corrections.hpp — M2 = (12.22) compensation (set for a configured
 // latitude and ground speed, at the gyro's own indicated heading) + H κ (ψ − ψ_soll) (12.23),
 // M1 = −k β (12.24); the turn cut-out; a torque limit.
-// Reads (SensorFrame; plant: sim/plants/directional_gyro_plant.hpp):
-//   gimbal_angle_rad[kAxis1] = ψ   the heading indication: the outer-gimbal pick-off read on the card
-//                                  (outer-gimbal angle against the case + the card's setting), (−π, π] [rad]
-//   gimbal_angle_rad[kAxis2] = β   inner-gimbal pick-off [rad]
-//   carrier_angle_rad[kYaw] = ψ_soll   the external heading reference (compass), (−π, π] [rad]
-//   carrier_rate_rad_s[kYaw] = turn rate about the vehicle's normal axis (the cut-out's input) [rad/s]
-//   (also filled, not read: gimbal_rate_rad_s = α', β'; carrier_angle_rad[kRoll] = bank; carrier rates.)
-// Writes (ActuatorFrame): gimbal_torque_Nm[kAxis1] = M1 (outer, normal axis), gimbal_torque_Nm[kAxis2] = M2
-// (inner axis) [N m]; precession_brake = 0 (an instrument has no brake; in the safe state the runtime sets 1,
-// which the plant ignores: zero torque leaves a free gyro); status kCorrectionCutOut,
-// kInstrumentTorqueLimited + the runtime's.
+// Frames: the directional gyro's own (tools/devices/directional_gyro/directional_gyro_signals.toml,
+// docs/icd/directional_gyro.md; plant: sim/plants/directional_gyro_plant.hpp). Reads:
+//   indicated_heading_rad = ψ   the heading indication: the outer-gimbal pick-off read on the card
+//                               (outer-gimbal angle against the case + the card's setting), [−π, π) [rad]
+//   inner_gimbal_rad = β        inner-gimbal pick-off [rad]
+//   compass_heading_rad = ψ_soll   the external heading reference (compass), [−π, π) [rad]
+//   case_yaw_rate_rad_s = turn rate about the vehicle's normal axis (the cut-out's input) [rad/s]
+//   (also sent, not read: the gimbal rates α', β', the bank and the other case rates; the fault monitor
+//   screens them.)
+// Writes outer_torquer_Nm = M1 (outer, normal axis), inner_torquer_Nm = M2 (inner axis) [N m]; status
+// kCorrectionCutOut, kInstrumentTorqueLimited + the runtime's. An instrument has no brake: the safe state is
+// zero torque, which leaves a free gyro.
 // No drive (torque-mode torquers). Rates: the law every control_divisor base ticks.
 // Docs: docs/models/directional-gyro.md#firmware-law
 #pragma once
@@ -27,27 +28,28 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/directional_gyro_corrections.hpp"
 #include "firmware/control/law_status_bits.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/directional_gyro_frames.hpp"
 
 namespace gyrostab::firmware {
 
 struct DirectionalGyroConfig {
-  RuntimeConfig runtime{};
+  RuntimeConfigOf<msg::directional_gyro::SensorFrame> runtime{};
   DirectionalGyroCorrectionParams law{};
 };
 
 class DirectionalGyroLaw {
  public:
+  using SensorFrame = msg::directional_gyro::SensorFrame;
+  using ActuatorFrame = msg::directional_gyro::ActuatorFrame;
+
   explicit DirectionalGyroLaw(const DirectionalGyroConfig& c) : p_(c.law) {}
 
-  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
-    const DirectionalGyroSignals s{in.gimbal_angle_rad[msg::kAxis1], in.gimbal_angle_rad[msg::kAxis2],
-                                   in.carrier_angle_rad[msg::kYaw], in.carrier_rate_rad_s[msg::kYaw]};
+  void control(const SensorFrame& in, ActuatorFrame& cmd) {
+    const DirectionalGyroSignals s{in.indicated_heading_rad, in.inner_gimbal_rad, in.compass_heading_rad,
+                                   in.case_yaw_rate_rad_s};
     const DirectionalGyroTorques t = directional_gyro_corrections(p_, s);
-    cmd.gimbal_torque_Nm[msg::kAxis1] = t.M1;
-    cmd.gimbal_torque_Nm[msg::kAxis2] = t.M2;
-    cmd.precession_brake = 0.0;
+    cmd.outer_torquer_Nm = t.M1;
+    cmd.inner_torquer_Nm = t.M2;
     if (t.cut_out) cmd.status |= bit(LawStatusBit::kCorrectionCutOut);
     if (t.limited) cmd.status |= bit(LawStatusBit::kInstrumentTorqueLimited);
   }

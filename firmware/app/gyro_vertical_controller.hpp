@@ -4,17 +4,17 @@
 //
 // Law: firmware/control/gyro_vertical_correction.hpp — the five rows of (12.35) (pendulous, viscous,
 // Coulomb, linear, relay) summed, with the book's remedy for the turn error (turn cut-out) and a torque limit.
-// Reads (SensorFrame; plant: sim/plants/gyro_vertical_plant.hpp):
-//   gimbal_angle_rad[kAxis1] = e1 = α − α_L   erection sensor (liquid level on the rotor case), tilt of the
-//   gimbal_angle_rad[kAxis2] = e2 = β − β_L   rotor axis from the apparent vertical about axes 1, 2 [rad]
-//   gimbal_rate_rad_s[kAxis1] = α', [kAxis2] = β'   gimbal rates relative to the level frame [rad/s]
-//   carrier_rate_rad_s[kYaw] = turn rate from the turn indicator (a P rate gyro, (15.6)) [rad/s]
-//   (carrier_angle_rad[kRoll], [kPitch] carry the instrument's indication of bank and pitch, φ − α, θ − β;
-//   the law does not read them.)
-// Writes (ActuatorFrame): gimbal_torque_Nm[kAxis1] = M1, gimbal_torque_Nm[kAxis2] = M2 [N m] (torquers);
-// precession_brake = 0 (an instrument has no brake; in the safe state the runtime sets 1, which the plant
-// ignores: zero torque leaves a free gyro that holds its attitude); status kCorrectionCutOut,
-// kInstrumentTorqueLimited + the runtime's.
+// Frames: the gyro vertical's own (tools/devices/gyro_vertical/gyro_vertical_signals.toml,
+// docs/icd/gyro_vertical.md; plant: sim/plants/gyro_vertical_plant.hpp). Reads:
+//   erection_e1_rad = e1 = α − α_L   erection sensor (liquid level on the rotor case), tilt of the
+//   erection_e2_rad = e2 = β − β_L   rotor axis from the apparent vertical about axes 1, 2 [rad]
+//   alpha_rate_rad_s = α', beta_rate_rad_s = β'   gimbal rates relative to the level frame [rad/s]
+//   turn_indicator_rad_s = turn rate from the turn indicator (a P rate gyro, (15.6)) [rad/s]
+//   (indicated_bank_rad, indicated_pitch_rad carry the instrument's indication of bank and pitch, φ − α,
+//   θ − β; the law does not read them, the fault monitor screens them.)
+// Writes torquer1_Nm = M1, torquer2_Nm = M2 [N m] (torquers); status kCorrectionCutOut,
+// kInstrumentTorqueLimited + the runtime's. An instrument has no brake: the safe state is zero torque, which
+// leaves a free gyro that holds its attitude.
 // No drive (torque-mode torquers). Rates: the law every control_divisor base ticks.
 // Docs: docs/models/gyro-vertical.md#firmware-law
 #pragma once
@@ -26,28 +26,28 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/gyro_vertical_correction.hpp"
 #include "firmware/control/law_status_bits.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/gyro_vertical_frames.hpp"
 
 namespace gyrostab::firmware {
 
 struct GyroVerticalConfig {
-  RuntimeConfig runtime{};
+  RuntimeConfigOf<msg::gyro_vertical::SensorFrame> runtime{};
   GyroVerticalCorrectionParams law{};
 };
 
 class GyroVerticalLaw {
  public:
+  using SensorFrame = msg::gyro_vertical::SensorFrame;
+  using ActuatorFrame = msg::gyro_vertical::ActuatorFrame;
+
   explicit GyroVerticalLaw(const GyroVerticalConfig& c) : p_(c.law) {}
 
-  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
-    const CorrectionSignals s{in.gimbal_angle_rad[msg::kAxis1], in.gimbal_angle_rad[msg::kAxis2],
-                              in.gimbal_rate_rad_s[msg::kAxis1], in.gimbal_rate_rad_s[msg::kAxis2],
-                              in.carrier_rate_rad_s[msg::kYaw]};
+  void control(const SensorFrame& in, ActuatorFrame& cmd) {
+    const CorrectionSignals s{in.erection_e1_rad, in.erection_e2_rad, in.alpha_rate_rad_s, in.beta_rate_rad_s,
+                              in.turn_indicator_rad_s};
     const CorrectionTorques t = gyro_vertical_correction(p_, s);
-    cmd.gimbal_torque_Nm[msg::kAxis1] = t.M1;
-    cmd.gimbal_torque_Nm[msg::kAxis2] = t.M2;
-    cmd.precession_brake = 0.0;
+    cmd.torquer1_Nm = t.M1;
+    cmd.torquer2_Nm = t.M2;
     if (t.cut_out) cmd.status |= bit(LawStatusBit::kCorrectionCutOut);
     if (t.limited) cmd.status |= bit(LawStatusBit::kInstrumentTorqueLimited);
   }

@@ -4,16 +4,16 @@
 //
 // Law: firmware/control/gyrocompass_law.hpp — M1 = −f β_lvl (13.8), M2 = −c_e β_lvl; c_e typically set for
 // Schuler tuning (13.26) at a design latitude (schuler_tuned_pendulosity).
-// Reads (SensorFrame; plant: sim/plants/gyrocompass_plant.hpp):
-//   gimbal_angle_rad[kAxis2] = β_lvl = β − β_L   level sensor: elevation of the rotor axis's north end
-//                                                above the apparent horizon (the "β + b^N/g" of (13.21)) [rad]
-//   (also filled, not read by the law: gimbal_angle_rad[kAxis1] = follow-up angle, the rotor axis's
-//   azimuth relative to the ship's bow, = −(ψ + α) wrapped [rad]; gimbal_rate_rad_s[kAxis1/2] = α', β';
-//   carrier_angle_rad[kYaw] = indicated heading ψ + α wrapped to (−π, π] [rad].)
-// Writes (ActuatorFrame): gimbal_torque_Nm[kAxis1] = M1 (about the vertical), gimbal_torque_Nm[kAxis2] = M2
-// (about the east axis) [N m]; precession_brake = 0 (no brake; in the safe state the runtime's 1 is ignored
-// by the plant: zero torque, the sphere keeps only its mechanical pendulosity); status
-// kInstrumentTorqueLimited + the runtime's.
+// Frames: the gyrocompass's own (tools/devices/gyrocompass/gyrocompass_signals.toml, docs/icd/gyrocompass.md;
+// plant: sim/plants/gyrocompass_plant.hpp). Reads:
+//   level_rad = β_lvl = β − β_L   level sensor: elevation of the rotor axis's north end above the apparent
+//                                 horizon (the "β + b^N/g" of (13.21)) [rad]
+//   (also sent, not read by the law: follow_up_rad = the rotor axis's azimuth relative to the ship's bow,
+//   −(ψ + α) wrapped [rad]; azimuth_rate_rad_s, elevation_rate_rad_s = α', β'; indicated_heading_rad = ψ + α
+//   wrapped to [−π, π] [rad]; the fault monitor screens them.)
+// Writes vertical_torquer_Nm = M1 (about the vertical), east_torquer_Nm = M2 (about the east axis) [N m];
+// status kInstrumentTorqueLimited + the runtime's. No brake: the safe state is zero torque, the sphere keeps
+// only its mechanical pendulosity.
 // Docs: docs/models/gyrocompass.md#firmware-law
 #pragma once
 
@@ -24,25 +24,26 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/gyrocompass_law.hpp"
 #include "firmware/control/law_status_bits.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/gyrocompass_frames.hpp"
 
 namespace gyrostab::firmware {
 
 struct GyrocompassConfig {
-  RuntimeConfig runtime{};
+  RuntimeConfigOf<msg::gyrocompass::SensorFrame> runtime{};
   GyrocompassLawParams law{};
 };
 
 class GyrocompassDeviceLaw {
  public:
+  using SensorFrame = msg::gyrocompass::SensorFrame;
+  using ActuatorFrame = msg::gyrocompass::ActuatorFrame;
+
   explicit GyrocompassDeviceLaw(const GyrocompassConfig& c) : p_(c.law) {}
 
-  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
-    const GyrocompassTorques t = gyrocompass_torques(p_, in.gimbal_angle_rad[msg::kAxis2]);
-    cmd.gimbal_torque_Nm[msg::kAxis1] = t.M1;
-    cmd.gimbal_torque_Nm[msg::kAxis2] = t.M2;
-    cmd.precession_brake = 0.0;
+  void control(const SensorFrame& in, ActuatorFrame& cmd) {
+    const GyrocompassTorques t = gyrocompass_torques(p_, in.level_rad);
+    cmd.vertical_torquer_Nm = t.M1;
+    cmd.east_torquer_Nm = t.M2;
     if (t.limited) cmd.status |= bit(LawStatusBit::kInstrumentTorqueLimited);
   }
   void reset() {}  // stateless

@@ -6,15 +6,15 @@
 //
 // Law: firmware/control/platform_alignment_loops.hpp — levelling ω_cN = Ω_N − K1 θ̂_N + I_N,
 // ω_cE = −K1 θ̂_E + I_E; azimuth ω_cU = Ω_U − k_a I_E after the levelling phase.
-// Reads (SensorFrame; plant: sim/plants/platform_alignment_plant.hpp):
-//   carrier_angle_rad[kRoll]  = θ̂_E = a_N/g0, the platform's apparent tilt about its east axis [rad]
-//   carrier_angle_rad[kPitch] = θ̂_N = −a_E/g0, the apparent tilt about its north axis [rad]
+// Frames: the platform alignment's own (tools/devices/platform_alignment/platform_alignment_signals.toml,
+// docs/icd/platform_alignment.md; plant: sim/plants/platform_alignment_plant.hpp). Reads:
+//   theta_east_rad  = θ̂_E = a_N/g0, the platform's apparent tilt about its east axis [rad]
+//   theta_north_rad = θ̂_N = −a_E/g0, the apparent tilt about its north axis [rad]
 //   (g0 = 9.80665 m/s²; a_E, a_N the east and north accelerometers sampled at the frame's time.)
-// Writes (ActuatorFrame): gimbal_torque_Nm[kAxis1] = torquer of the east gyro, [kAxis2] = of the north gyro
-// (M = −H ω_c, (16.2)) [N m]; motor_voltage_V[kAxis1] = the zenith gyro's torquer voltage u = ω_cU/K_Z [V]
-// (the contract has two torque slots; the third torquer is voltage-driven); motor_voltage_V[kAxis2] = 0;
-// precession_brake = 0 (none; the safe state's zero commands leave the platform at its gyros' drift);
-// status kInstrumentTorqueLimited + the runtime's.
+// Writes east_torquer_Nm = torquer of the east gyro, north_torquer_Nm = of the north gyro (M = −H ω_c, (16.2))
+// [N m]; zenith_torquer_V = the zenith gyro's torquer voltage u = ω_cU/K_Z [V]; status
+// kInstrumentTorqueLimited + the runtime's. No brake: the safe state's zero commands leave the platform at its
+// gyros' drift.
 // Introspection (in-process runs): the loops' phase, integrators and heading estimate.
 // Docs: docs/models/platform-alignment.md#firmware-law
 #pragma once
@@ -25,33 +25,32 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/law_status_bits.hpp"
 #include "firmware/control/platform_alignment_loops.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/platform_alignment_frames.hpp"
 
 namespace gyrostab::firmware {
 
 struct PlatformAlignmentConfig {
-  RuntimeConfig runtime{};
+  RuntimeConfigOf<msg::platform_alignment::SensorFrame> runtime{};
   PlatformAlignmentLoopParams law{};
 };
 
 class PlatformAlignmentLaw {
  public:
+  using SensorFrame = msg::platform_alignment::SensorFrame;
+  using ActuatorFrame = msg::platform_alignment::ActuatorFrame;
+
   explicit PlatformAlignmentLaw(const PlatformAlignmentConfig& c)
       : loops_(c.law, c.runtime.control_period_s()) {}
 
-  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
+  void control(const SensorFrame& in, ActuatorFrame& cmd) {
     // A frame the fault monitor holds (same tick as the last one used) is not integrated twice.
     const bool fresh = !used_any_ || in.tick != last_tick_;
     used_any_ = true;
     last_tick_ = in.tick;
-    const PlatformAlignmentCommand c =
-        loops_.step(in.carrier_angle_rad[msg::kRoll], in.carrier_angle_rad[msg::kPitch], fresh);
-    cmd.gimbal_torque_Nm[msg::kAxis1] = c.M_east;
-    cmd.gimbal_torque_Nm[msg::kAxis2] = c.M_north;
-    cmd.motor_voltage_V[msg::kAxis1] = c.u_zenith;
-    cmd.motor_voltage_V[msg::kAxis2] = 0.0;
-    cmd.precession_brake = 0.0;
+    const PlatformAlignmentCommand c = loops_.step(in.theta_east_rad, in.theta_north_rad, fresh);
+    cmd.east_torquer_Nm = c.M_east;
+    cmd.north_torquer_Nm = c.M_north;
+    cmd.zenith_torquer_V = c.u_zenith;
     if (c.limited) cmd.status |= bit(LawStatusBit::kInstrumentTorqueLimited);
   }
   void reset() { loops_.reset(); }

@@ -6,13 +6,14 @@
 // Law: firmware/control/position_gyro_platform_law.hpp (its check refuses a gain in the unstable band of
 // (16.9) with the band's edges, an undamped gyro, and a sampled loop whose discrete closed loop has a
 // spectral radius ≥ 1 at the control period and latency).
-// Reads (SensorFrame; plant: sim/plants/position_gyro_platform_plant.hpp): gimbal_angle_rad[kAxis1] = δ − α,
-// the pick-off between platform and outer gimbal [rad]. (Also filled, not read: carrier_angle_rad[kRoll] = δ,
-// carrier_rate_rad_s[kRoll] = δ', gimbal_angle_rad[kAxis2] = β, gimbal_rate_rad_s[kAxis1] = α',
-// gimbal_rate_rad_s[kAxis2] = β'.)
-// Writes (ActuatorFrame): gimbal_torque_Nm[kAxis1] = M1^KP platform torquer, [kAxis2] = M2^K gyro torquer
-// [N m]; precession_brake = 0 (the safe state's zero torques leave the platform free on its bearing);
-// status kInstrumentTorqueLimited + the runtime's. No drive.
+// Frames: the position-gyro platform's own (tools/devices/position_gyro_platform/
+// position_gyro_platform_signals.toml, docs/icd/position_gyro_platform.md; plant:
+// sim/plants/position_gyro_platform_plant.hpp). Reads pickoff_rad = δ − α, the pick-off between platform and
+// outer gimbal [rad]. (Also sent, not read: platform_rad = δ, platform_rate_rad_s = δ', inner_gimbal_rad = β,
+// gyro_frame_rate_rad_s = α', inner_gimbal_rate_rad_s = β'; the fault monitor screens them.)
+// Writes platform_torquer_Nm = M1^KP platform torquer, gyro_torquer_Nm = M2^K gyro torquer [N m]; status
+// kInstrumentTorqueLimited + the runtime's. No brake: the safe state's zero torques leave the platform free on
+// its bearing. No drive.
 // Docs: docs/models/position-gyro-platform.md#firmware-law
 #pragma once
 
@@ -20,25 +21,26 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/law_status_bits.hpp"
 #include "firmware/control/position_gyro_platform_law.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/position_gyro_platform_frames.hpp"
 
 namespace gyrostab::firmware {
 
 struct PositionGyroPlatformConfig {
-  RuntimeConfig runtime{};
+  RuntimeConfigOf<msg::position_gyro_platform::SensorFrame> runtime{};
   PositionGyroPlatformParams law{};
 };
 
 class PositionGyroPlatformLaw {
  public:
+  using SensorFrame = msg::position_gyro_platform::SensorFrame;
+  using ActuatorFrame = msg::position_gyro_platform::ActuatorFrame;
+
   explicit PositionGyroPlatformLaw(const PositionGyroPlatformConfig& c) : p_(c.law) {}
 
-  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
-    const PositionGyroPlatformCommand c = position_gyro_platform_step(p_, in.tick, in.gimbal_angle_rad[msg::kAxis1]);
-    cmd.gimbal_torque_Nm[msg::kAxis1] = c.platform_torque_Nm;
-    cmd.gimbal_torque_Nm[msg::kAxis2] = c.gyro_torque_Nm;
-    cmd.precession_brake = 0.0;
+  void control(const SensorFrame& in, ActuatorFrame& cmd) {
+    const PositionGyroPlatformCommand c = position_gyro_platform_step(p_, in.tick, in.pickoff_rad);
+    cmd.platform_torquer_Nm = c.platform_torque_Nm;
+    cmd.gyro_torquer_Nm = c.gyro_torque_Nm;
     if (c.limited) cmd.status |= bit(LawStatusBit::kInstrumentTorqueLimited);
   }
   void reset() {}  // stateless

@@ -11,8 +11,9 @@
 // Check (start-up): d1, d2 > 0 (undamped: at best marginal); the continuous loop stable by Hurwitz — a gain
 // inside Hübner's band k− < k < k+ (position_gyro_platform_stability.hpp) is refused with the band's edges;
 // the sampled loop's discrete closed-loop spectral radius ρ < 1 at the control period and the latency.
-// Signals: reads SensorFrame gimbal_angle_rad[kAxis1] = δ − α (pick-off) [rad]. Writes ActuatorFrame
-// gimbal_torque_Nm[kAxis1] = M1^KP (platform torquer), [kAxis2] = M2^K (gyro torquer) [N m].
+// Signals: reads δ − α (the pick-off, pickoff_rad) [rad]; gives M1^KP (platform torquer, platform_torquer_Nm)
+// and M2^K (gyro torquer, gyro_torquer_Nm) [N m] (the position-gyro platform's signal table,
+// docs/icd/position_gyro_platform.md).
 // State: none besides the parameters (the schedule reads the frame's tick). O(1) per step, no heap.
 // Tests: tests/oracle/position_gyro_platform_test.cpp. Docs: docs/models/position-gyro-platform.md#firmware-law
 #pragma once

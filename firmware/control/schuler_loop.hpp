@@ -7,10 +7,10 @@
 //   (16.37)  (α − ϑ)'' + (g/R)(α − ϑ) = 0           (16.38)  T = 2π sqrt(R/g) = 84.4 min
 //   (16.44)  λ1,2 = ±i sqrt(g/R) — [OCR-fix] printed ±i sqrt(R/g); (16.43) gives sqrt(g/R).
 // The loop reads each channel's apparent tilt θ_i = the platform's tilt about its axis i from the apparent
-// level as its accelerometer senses it (θ = −b^M/g0 for the book's single axis; SensorFrame carrier_angle,
-// scale g0 = 9.80665 m/s²; see sim/models/inertial_platform.hpp), averaged over the control period by an
-// integrating (Δv) accelerometer, so that the sum below is the exact integral of the specific force; on
-// every channel
+// level as its accelerometer senses it (θ = −b^M/g0 for the book's single axis; the inertial platform's
+// theta1_rad, theta2_rad, scale g0 = 9.80665 m/s²; see sim/models/inertial_platform.hpp), averaged over the
+// control period by an integrating (Δv) accelerometer, so that the sum below is the exact integral of the
+// specific force; on every channel
 //   ω_cmd,i ← ω_cmd,i − (g0/R) θ_i T          (forward Euler at the control period T)
 //   M_i = −H ω_cmd,i                          (torquer on the channel's gyro, (16.39))
 // ω_cmd starts at initial_rate (the level frame's rate after alignment: v0/R, incl. the Earth's rate —

@@ -45,7 +45,7 @@
 //   velocity's F components and Ω = (−v2/R, v1/R, 0): the Schuler loop needs no Coriolis terms. Per axis
 //   the servo above; accelerometers along platform axes 1, 2 (small angles):
 //            b = f − e × f:   b1 = f1 − g e2 + e3 f2,   b2 = f2 + g e1 − e3 f1    (f3 ≈ g)
-// Apparent tilt (what the Schuler loop reads, SensorFrame carrier_angle, the field's scale g0 = 9.80665):
+// Apparent tilt (what the Schuler loop reads, theta1_rad, theta2_rad, the field's scale g0 = 9.80665):
 //   single axis and three-axis axis 2:  θ = −b_along/g0;   three-axis axis 1: θ1 = b2/g0
 // so that θ_i = e_i at rest and the loop is the same on every channel: ω_cmd,i' = −(g0/R) θ_i (16.36).
 // Tuned, e obeys (16.37) e'' + (g/R) e = 0 for ANY vehicle motion: period 2π sqrt(R/g) = 84.4 min (16.38).

@@ -15,13 +15,15 @@
 // are re-solved from the rotor axis (the kinematic response to an instantaneous roll; a real roll-in takes
 // seconds and ends in the same place to first order in the roll-in time).
 //
-// State: [α, β] (rad), α unwrapped. Inputs (ActuatorFrame): gimbal_torque_Nm[kAxis1] = M1 (outer, normal
-// axis), [kAxis2] = M2 (inner axis) [N m]. Outputs (SensorFrame):
-//   gimbal_angle_rad[kAxis1] = ψ_ind = α + card, wrapped to [−π, π): the heading indication; the card is set
+// State: [α, β] (rad), α unwrapped. Frames: the directional gyro's own (tools/devices/directional_gyro/
+// directional_gyro_signals.toml, docs/icd/directional_gyro.md): in, outer_torquer_Nm = M1 (outer, normal
+// axis), inner_torquer_Nm = M2 (inner axis) [N m]; out,
+//   indicated_heading_rad = ψ_ind = α + card, wrapped to [−π, π): the heading indication; the card is set
 //     at t = 0 so that ψ_ind(0) = ψ(0) + heading_error0 [rad]
-//   gimbal_angle_rad[kAxis2] = β [rad];  gimbal_rate_rad_s[kAxis1, kAxis2] = α', β' [rad/s]
-//   carrier_angle_rad[kYaw] = ψ_soll = true heading + compass white noise, wrapped [rad]; [kRoll] = bank [rad]
-//   carrier_rate_rad_s = the case rate in body axes (roll, pitch, yaw = forward, right, down) [rad/s]
+//   inner_gimbal_rad = β [rad];  outer_gimbal_rate_rad_s, inner_gimbal_rate_rad_s = α', β' [rad/s]
+//   compass_heading_rad = ψ_soll = true heading + compass white noise, wrapped [rad]; bank_rad = bank [rad]
+//   case_roll_rate_rad_s, case_pitch_rate_rad_s, case_yaw_rate_rad_s = the case rate in body axes (forward,
+//     right, down) [rad/s]
 // Random streams of the scene seed (seeded_rng.hpp): 1 the compass.
 // Guard: |β| ≥ 89° (gimbal lock, where the precession theory's 1/cos β diverges) makes the state non-finite,
 // so the run stops there with the state named (tools/run/state_guard.hpp).
@@ -35,8 +37,7 @@
 #include <limits>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/directional_gyro_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/directional_gyro.hpp"
@@ -78,6 +79,8 @@ inline dynamics::Vec3 case_rate_of(const dynamics::Vec3& w_T, double bank, doubl
 
 class DirectionalGyroPlant {
  public:
+  using SensorFrame = msg::directional_gyro::SensorFrame;
+  using ActuatorFrame = msg::directional_gyro::ActuatorFrame;
   using Model = models::DirectionalGyro;
   using State = Model::State;
   using Inputs = models::DirectionalGyroInputs;
@@ -99,26 +102,26 @@ class DirectionalGyroPlant {
     model_.inputs.case_rate.hold(case_rate_of(feed_.frame().Omega, bank_, 0.0));
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
     const double t = static_cast<double>(tick) * t_.tick_s();
     State dx;
     model_.derivative(t, x_, dx);
-    f.gimbal_angle_rad[msg::kAxis1] = indicated_heading_rad();
-    f.gimbal_angle_rad[msg::kAxis2] = beta_rad();
-    f.gimbal_rate_rad_s[msg::kAxis1] = dx[Model::kAlpha];
-    f.gimbal_rate_rad_s[msg::kAxis2] = dx[Model::kBeta];
-    f.carrier_angle_rad[msg::kYaw] = wrap_heading(true_heading_rad() + compass_noise_.sample(rng_));
-    f.carrier_angle_rad[msg::kRoll] = bank_;
+    f.indicated_heading_rad = indicated_heading_rad();
+    f.inner_gimbal_rad = beta_rad();
+    f.outer_gimbal_rate_rad_s = dx[Model::kAlpha];
+    f.inner_gimbal_rate_rad_s = dx[Model::kBeta];
+    f.compass_heading_rad = wrap_heading(true_heading_rad() + compass_noise_.sample(rng_));
+    f.bank_rad = bank_;
     const dynamics::Vec3 w = model_.inputs.case_rate.w0;  // case axes (up, right, forward)
-    f.carrier_rate_rad_s[msg::kRoll] = w.z();
-    f.carrier_rate_rad_s[msg::kPitch] = w.y();
-    f.carrier_rate_rad_s[msg::kYaw] = -w.x();
+    f.case_roll_rate_rad_s = w.z();
+    f.case_pitch_rate_rad_s = w.y();
+    f.case_yaw_rate_rad_s = -w.x();
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
-    model_.inputs.M1 = cmd.gimbal_torque_Nm[msg::kAxis1];
-    model_.inputs.M2 = cmd.gimbal_torque_Nm[msg::kAxis2];
+  void actuate(const ActuatorFrame& cmd) {
+    model_.inputs.M1 = cmd.outer_torquer_Nm;
+    model_.inputs.M2 = cmd.inner_torquer_Nm;
   }
 
   // Integrates [k, k + 1) in three parts, so that a meter can watch the integration alone: the case's motion

@@ -9,10 +9,11 @@
 // roll angle, (12.43)), pitch 0.
 //
 // State: [α, β (rad), α', β' (rad/s)] of the rotor axis relative to the frame (precession form: the rates
-// are computed, not states). Inputs (ActuatorFrame): gimbal_torque_Nm[kAxis1], [kAxis2] = torquer commands
-// M1, M2 [N m]. Outputs (SensorFrame): gimbal_angle_rad[kAxis1, kAxis2] = erection signal e = (α − α_L,
-// β − β_L) [rad], gimbal_rate_rad_s[kAxis1, kAxis2] = α', β' [rad/s], carrier_rate_rad_s[kYaw] = the turn
-// indicator [rad/s], carrier_angle_rad[kRoll] = bank − α, [kPitch] = −β (the indicated attitude) [rad].
+// are computed, not states). Frames: the gyro vertical's own (tools/devices/gyro_vertical/
+// gyro_vertical_signals.toml, docs/icd/gyro_vertical.md): in, torquer1_Nm, torquer2_Nm = torquer commands
+// M1, M2 [N m]; out, erection_e1_rad, erection_e2_rad = erection signal e = (α − α_L, β − β_L) [rad],
+// alpha_rate_rad_s, beta_rate_rad_s = α', β' [rad/s], turn_indicator_rad_s = the turn indicator [rad/s],
+// indicated_bank_rad = bank − α, indicated_pitch_rad = −β (the indicated attitude) [rad].
 // Random streams of the scene seed (seeded_rng.hpp): 1, 2 erection sensor axes 1, 2; 3, 4 rate pick-offs.
 // Allocation-free after construction. Docs: docs/models/gyro-vertical.md. Oracle:
 // tests/oracle/gyro_vertical_test.cpp (the model); this plant in the shipped scene through
@@ -24,8 +25,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/gyro_vertical_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/gyro_vertical.hpp"
@@ -57,6 +57,8 @@ struct GyroVerticalPlantParams {
 
 class GyroVerticalPlant {
  public:
+  using SensorFrame = msg::gyro_vertical::SensorFrame;
+  using ActuatorFrame = msg::gyro_vertical::ActuatorFrame;
   using Model = models::GyroVertical;
   using State = Model::State;
   using Inputs = models::GyroVerticalInputs;
@@ -84,24 +86,24 @@ class GyroVerticalPlant {
     case_ = m;
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
     const double t = static_cast<double>(tick) * t_.tick_s();
     double e1, e2, a_rate, b_rate;
     model_.erection_signal(t, x_, e1, e2);
     model_.rates(t, x_, a_rate, b_rate);
-    f.gimbal_angle_rad[msg::kAxis1] = e1 + erection_noise_[0].sample(rng_[0]);
-    f.gimbal_angle_rad[msg::kAxis2] = e2 + erection_noise_[1].sample(rng_[1]);
-    f.gimbal_rate_rad_s[msg::kAxis1] = a_rate + rate_noise_[0].sample(rng_[2]);
-    f.gimbal_rate_rad_s[msg::kAxis2] = b_rate + rate_noise_[1].sample(rng_[3]);
-    f.carrier_rate_rad_s[msg::kYaw] = indicator_.indicated();
-    f.carrier_angle_rad[msg::kRoll] = apparent_vertical().alpha_L - alpha_rad();
-    f.carrier_angle_rad[msg::kPitch] = -beta_rad();
+    f.erection_e1_rad = e1 + erection_noise_[0].sample(rng_[0]);
+    f.erection_e2_rad = e2 + erection_noise_[1].sample(rng_[1]);
+    f.alpha_rate_rad_s = a_rate + rate_noise_[0].sample(rng_[2]);
+    f.beta_rate_rad_s = b_rate + rate_noise_[1].sample(rng_[3]);
+    f.turn_indicator_rad_s = indicator_.indicated();
+    f.indicated_bank_rad = apparent_vertical().alpha_L - alpha_rad();
+    f.indicated_pitch_rad = -beta_rad();
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
-    model_.inputs.M1 = cmd.gimbal_torque_Nm[msg::kAxis1];
-    model_.inputs.M2 = cmd.gimbal_torque_Nm[msg::kAxis2];
+  void actuate(const ActuatorFrame& cmd) {
+    model_.inputs.M1 = cmd.torquer1_Nm;
+    model_.inputs.M2 = cmd.torquer2_Nm;
   }
 
   // Integrates [k, k + 1) in three parts, so that a meter can watch the integration alone: the frame's

@@ -10,11 +10,12 @@
 //   β0 = (HΩ1 + c β_L)/(HΩ3 + c),  α0 = −(HΩ2 + f(β0 − β_L))/(HΩ3),  c = mechanical + electrical.
 //
 // State: [α, β (rad), α', β' (rad/s), γ (rad), γ' (rad/s)] — azimuth (positive west) and elevation of the
-// rotor axis, and the swing about it (precession form: the rates are computed, not states). Inputs
-// (ActuatorFrame): gimbal_torque_Nm[kAxis1] = torquer about the vertical M1, [kAxis2] = about the east axis
-// M2 [N m]. Outputs (SensorFrame): gimbal_angle_rad[kAxis2] = level signal β − β_L [rad],
-// gimbal_angle_rad[kAxis1] = follow-up pick-off −(ψ + α) and carrier_angle_rad[kYaw] = indicated heading
-// ψ + α, both in (−π, π] [rad]; gimbal_rate_rad_s[kAxis1, kAxis2] = α', β' [rad/s].
+// rotor axis, and the swing about it (precession form: the rates are computed, not states). Frames: the
+// gyrocompass's own (tools/devices/gyrocompass/gyrocompass_signals.toml, docs/icd/gyrocompass.md): in,
+// vertical_torquer_Nm = torquer about the vertical M1, east_torquer_Nm = about the east axis M2 [N m]; out,
+// level_rad = level signal β − β_L [rad], follow_up_rad = follow-up pick-off −(ψ + α) and
+// indicated_heading_rad = ψ + α, both in [−π, π] [rad]; azimuth_rate_rad_s, elevation_rate_rad_s = α', β'
+// [rad/s].
 // Random streams of the scene seed (seeded_rng.hpp): 1 the level sensor.
 // Allocation-free after construction. Docs: docs/models/gyrocompass.md. Oracle:
 // tests/oracle/gyrocompass_test.cpp (the model); this plant in the shipped scenes through
@@ -25,8 +26,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/gyrocompass_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/gyrocompass.hpp"
@@ -52,6 +52,8 @@ struct GyrocompassPlantParams {
 class GyrocompassPlant {
  public:
   using Model = models::Gyrocompass;
+  using SensorFrame = msg::gyrocompass::SensorFrame;
+  using ActuatorFrame = msg::gyrocompass::ActuatorFrame;
   using State = Model::State;
   using Inputs = models::GyrocompassInputs;
   enum Stream : std::uint64_t { kLevelStream = 1 };
@@ -77,22 +79,22 @@ class GyrocompassPlant {
     }
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
     const double t = static_cast<double>(tick) * t_.tick_s();
     double a_rate, b_rate;
     model_.rates(t, x_, a_rate, b_rate);
-    f.gimbal_angle_rad[msg::kAxis2] = model_.level_signal(t, x_) + level_noise_.sample(rng_level_);
+    f.level_rad = model_.level_signal(t, x_) + level_noise_.sample(rng_level_);
     const double heading = feed_.motion().heading;
-    f.gimbal_angle_rad[msg::kAxis1] = std::remainder(-(heading + alpha_rad()), 2.0 * std::numbers::pi);
-    f.gimbal_rate_rad_s[msg::kAxis1] = a_rate;
-    f.gimbal_rate_rad_s[msg::kAxis2] = b_rate;
-    f.carrier_angle_rad[msg::kYaw] = std::remainder(heading + alpha_rad(), 2.0 * std::numbers::pi);
+    f.follow_up_rad = std::remainder(-(heading + alpha_rad()), 2.0 * std::numbers::pi);
+    f.azimuth_rate_rad_s = a_rate;
+    f.elevation_rate_rad_s = b_rate;
+    f.indicated_heading_rad = std::remainder(heading + alpha_rad(), 2.0 * std::numbers::pi);
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
-    model_.inputs.M1 = cmd.gimbal_torque_Nm[msg::kAxis1];
-    model_.inputs.M2 = cmd.gimbal_torque_Nm[msg::kAxis2];
+  void actuate(const ActuatorFrame& cmd) {
+    model_.inputs.M1 = cmd.vertical_torquer_Nm;
+    model_.inputs.M2 = cmd.east_torquer_Nm;
   }
 
   // Integrates [k, k + 1) in three parts, so that a meter can watch the integration alone: the frame's

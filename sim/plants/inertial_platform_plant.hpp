@@ -14,11 +14,12 @@
 // frame under the torquers that hold it there (with the coupling's offsets, (16.15), (16.22)).
 //
 // State: single axis [e (rad), ω_P (rad/s), β (rad), β' (rad/s)]; three axes [e1..3 (rad), ω_P1..3 (rad/s),
-// β1..3 (rad), β'1..3 (rad/s)]. Inputs (ActuatorFrame): gimbal_torque_Nm[kAxis1, kAxis2] = the level
-// channels' gyro torquer commands M^K [N m] (three axes: the azimuth gyro's is 0 — F has no vertical rate).
-// Outputs (SensorFrame): carrier_angle_rad[kRoll] (, [kPitch] for three axes) = the channels' apparent
-// tilts θ [rad]; gimbal_angle_rad[i], gimbal_rate_rad_s[i] = the pick-off angle and rate that stabilize
-// channel i (integrating gyros: β_i; position gyros: α^Y for channel 1, β^X for channel 2).
+// β1..3 (rad), β'1..3 (rad/s)]. Frames: the inertial platform's own (tools/devices/inertial_platform/
+// inertial_platform_signals.toml, docs/icd/inertial_platform.md): in, torquer1_Nm, torquer2_Nm = the level
+// channels' gyro torquer commands M^K [N m] (three axes: the azimuth gyro's is 0 — F has no vertical rate);
+// out, theta1_rad (, theta2_rad for three axes) = the channels' apparent tilts θ [rad]; gyro_angle<i>_rad,
+// gyro_rate<i>_rad_s = the pick-off angle and rate that stabilize channel i (integrating gyros: β_i; position
+// gyros: α^Y for channel 1, β^X for channel 2); a single axis leaves channel 2's values 0.
 // Torquers of the position gyros: channel 1 torques gyro Y's inner axis, channel 2 gyro X's outer axis, wired so
 // that M = −H ω_cmd turns the platform at ω_cmd as with the integrating gyros (the firmware is the same).
 // Random streams of the scene seed (seeded_rng.hpp): 1, 2 the accelerometers of channels 1, 2.
@@ -31,8 +32,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/inertial_platform_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/inertial_platform.hpp"
@@ -65,7 +65,10 @@ struct InertialPlatformPlantParams {
   double accel_noise_density{0.0};  // accelerometer white noise [m/s²/√Hz]
 };
 
-// The two platforms behind one interface: frame, torquers, channel tilts, apparent tilts, gyro outputs.
+using InertialPlatformSensorFrame = msg::inertial_platform::SensorFrame;
+using InertialPlatformActuatorFrame = msg::inertial_platform::ActuatorFrame;
+
+// The platforms behind one interface: frame, torquers, channel tilts, apparent tilts, gyro outputs.
 template <class Model>
 struct PlatformAxes;
 
@@ -76,9 +79,7 @@ struct PlatformAxes<models::SingleAxisPlatform> {
   static constexpr std::array<const char*, M::kStateSize> kStateNames{"tilt_rad", "platform_rate_rad_s",
                                                                       "gyro_angle_rad", "gyro_rate_rad_s"};
   static models::FrameSample frame(const motion::EarthVehicleSample& m) { return frame_as_is(m.track); }
-  static void set_torquers(M& p, const msg::ActuatorFrame& cmd) {
-    p.inputs.torquer = cmd.gimbal_torque_Nm[msg::kAxis1];
-  }
+  static void set_torquers(M& p, const InertialPlatformActuatorFrame& cmd) { p.inputs.torquer = cmd.torquer1_Nm; }
   static double tilt(const M::State& x, int) { return x[M::kTilt]; }
   static double frame_rate(const models::FrameSample& w, int) { return w.Omega.y(); }
   static void apparent(const M& p, double t, const M::State& x, double (&theta)[2]) {
@@ -115,9 +116,9 @@ struct PlatformAxes<models::ThreeAxisPlatform> {
   static models::FrameSample frame(const motion::EarthVehicleSample& m) {
     return frame_as_is(m.azimuth_free);
   }
-  static void set_torquers(M& p, const msg::ActuatorFrame& cmd) {
-    p.inputs.torquer[0] = cmd.gimbal_torque_Nm[msg::kAxis1];
-    p.inputs.torquer[1] = cmd.gimbal_torque_Nm[msg::kAxis2];
+  static void set_torquers(M& p, const InertialPlatformActuatorFrame& cmd) {
+    p.inputs.torquer[0] = cmd.torquer1_Nm;
+    p.inputs.torquer[1] = cmd.torquer2_Nm;
     p.inputs.torquer[2] = 0.0;  // azimuth: the frame has no vertical rate
   }
   static double tilt(const M::State& x, int i) { return x[M::kTilt + i]; }
@@ -163,9 +164,9 @@ struct PlatformAxes<models::TwoPositionGyroPlatform> {
   static models::FrameSample frame(const motion::EarthVehicleSample& m) {
     return frame_as_is(m.azimuth_free);
   }
-  static void set_torquers(M& p, const msg::ActuatorFrame& cmd) {
-    p.inputs.torquer[0] = cmd.gimbal_torque_Nm[msg::kAxis1];
-    p.inputs.torquer[1] = cmd.gimbal_torque_Nm[msg::kAxis2];
+  static void set_torquers(M& p, const InertialPlatformActuatorFrame& cmd) {
+    p.inputs.torquer[0] = cmd.torquer1_Nm;
+    p.inputs.torquer[1] = cmd.torquer2_Nm;
     p.inputs.torquer[2] = 0.0;
   }
   static double tilt(const M::State& x, int i) { return x[M::kTilt + i]; }
@@ -198,6 +199,8 @@ class InertialPlatformPlant {
   using Axes = PlatformAxes<M>;
 
  public:
+  using SensorFrame = InertialPlatformSensorFrame;
+  using ActuatorFrame = InertialPlatformActuatorFrame;
   using Model = M;
   using State = typename M::State;
   using Inputs = typename M::Inputs;
@@ -220,20 +223,20 @@ class InertialPlatformPlant {
     theta_mean_[1] = theta_start_[1];
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
     // The integrating accelerometers' mean over the previous tick (at tick 0 the instantaneous value).
-    f.carrier_angle_rad[msg::kRoll] = theta_mean_[0] + noise_[0].sample(rng_[0]) / models::kStandardGravity;
-    if (kChannels > 1)
-      f.carrier_angle_rad[msg::kPitch] =
-          theta_mean_[1] + noise_[1].sample(rng_[1]) / models::kStandardGravity;
-    for (int i = 0; i < kChannels; ++i) {
-      f.gimbal_angle_rad[i] = Axes::gyro_angle(x_, i);
-      f.gimbal_rate_rad_s[i] = Axes::gyro_rate(x_, i);
+    f.theta1_rad = theta_mean_[0] + noise_[0].sample(rng_[0]) / models::kStandardGravity;
+    f.gyro_angle1_rad = Axes::gyro_angle(x_, 0);
+    f.gyro_rate1_rad_s = Axes::gyro_rate(x_, 0);
+    if constexpr (kChannels > 1) {
+      f.theta2_rad = theta_mean_[1] + noise_[1].sample(rng_[1]) / models::kStandardGravity;
+      f.gyro_angle2_rad = Axes::gyro_angle(x_, 1);
+      f.gyro_rate2_rad_s = Axes::gyro_rate(x_, 1);
     }
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) { Axes::set_torquers(model_, cmd); }
+  void actuate(const ActuatorFrame& cmd) { Axes::set_torquers(model_, cmd); }
 
   // Integrates [k, k + 1) in three parts, so that a meter can watch the integration alone: the frame's
   // motion over the tick, the platform, then the accelerometers' mean and the move to the next tick's frame.

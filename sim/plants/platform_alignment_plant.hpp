@@ -8,10 +8,11 @@
 //   f_G(t) = g e3 + R_GW R_WB(t) (a_rock,B(t) + a_vib,B(t))
 // W = the base's level frame (W1 = its heading, clockwise from north), R_WB from the rocking generator.
 //
-// State: q_GP (x, y, z, w) [-]. Inputs (ActuatorFrame): gimbal_torque_Nm[kAxis1], [kAxis2] = torquers of the
-// east and north gyros M [N m] (ω = −M/H); motor_voltage_V[kAxis1] = the zenith gyro's torquer voltage u [V]
-// (ω = K_Z u). Outputs (SensorFrame): carrier_angle_rad[kRoll] = a_N/g0, [kPitch] = −a_E/g0 (the apparent
-// tilts about the east and north axes, g0 = 9.80665 m/s²) [rad].
+// State: q_GP (x, y, z, w) [-]. Frames: the platform alignment's own (tools/devices/platform_alignment/
+// platform_alignment_signals.toml, docs/icd/platform_alignment.md): in, east_torquer_Nm, north_torquer_Nm =
+// torquers of the east and north gyros M [N m] (ω = −M/H); zenith_torquer_V = the zenith gyro's torquer
+// voltage u [V] (ω = K_Z u); out, theta_east_rad = a_N/g0, theta_north_rad = −a_E/g0 (the apparent tilts about
+// the east and north axes, g0 = 9.80665 m/s²) [rad].
 // Random streams of the scene seed (seeded_rng.hpp): 1, 2, 3 the east, north and up accelerometers.
 // Allocation-free after construction. Docs: docs/models/platform-alignment.md. Oracle:
 // tests/oracle/platform_alignment_test.cpp; the shipped scenes run in tests/determinism and tests/alloc.
@@ -21,8 +22,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/platform_alignment_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/platform_alignment.hpp"
@@ -67,6 +67,8 @@ struct PlatformAlignmentPlantParams {
 
 class PlatformAlignmentPlant {
  public:
+  using SensorFrame = msg::platform_alignment::SensorFrame;
+  using ActuatorFrame = msg::platform_alignment::ActuatorFrame;
   using Model = models::PlatformAlignment;
   using State = Model::State;
   using Inputs = Model::Inputs;
@@ -86,17 +88,17 @@ class PlatformAlignmentPlant {
     x_ = Model::state_of(models::attitude_of(p.initial));
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
     const dynamics::Vec3 a = model_.accelerometers(x_, p_.base.specific_force_G(time_s(tick), p_.gravity));
     for (int i = 0; i < 3; ++i) measured_[i] = accel_[i].measure(a[i], rng_[i]);
-    f.carrier_angle_rad[msg::kRoll] = measured_[1] / kAlignmentGravityScale;
-    f.carrier_angle_rad[msg::kPitch] = -measured_[0] / kAlignmentGravityScale;
+    f.theta_east_rad = measured_[1] / kAlignmentGravityScale;
+    f.theta_north_rad = -measured_[0] / kAlignmentGravityScale;
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
-    model_.inputs.rate_command = {-cmd.gimbal_torque_Nm[msg::kAxis1] / p_.H, -cmd.gimbal_torque_Nm[msg::kAxis2] / p_.H,
-                                  p_.azimuth_torquer_scale * cmd.motor_voltage_V[msg::kAxis1]};
+  void actuate(const ActuatorFrame& cmd) {
+    model_.inputs.rate_command = {-cmd.east_torquer_Nm / p_.H, -cmd.north_torquer_Nm / p_.H,
+                                  p_.azimuth_torquer_scale * cmd.zenith_torquer_V};
   }
 
   // Integrates [k, k + 1).

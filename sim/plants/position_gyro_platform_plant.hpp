@@ -6,11 +6,12 @@
 // Start: at rest, every angle 0.
 //
 // State: [δ (rad), δ' (rad/s), α (rad), α' (rad/s), β (rad), β' (rad/s)].
-// Inputs (ActuatorFrame): gimbal_torque_Nm[kAxis1] = M1^KP, [kAxis2] = M2^K [N m]; the brake is ignored (the
-// safe state's zero torques leave the platform free).
-// Outputs (SensorFrame): gimbal_angle_rad[kAxis1] = δ − α (the pick-off, with noise) [rad];
-// carrier_angle_rad[kRoll] = δ, carrier_rate_rad_s[kRoll] = δ' (the platform, absolute); gimbal_angle_rad[kAxis2]
-// = β; gimbal_rate_rad_s[kAxis1] = α', [kAxis2] = β' (absolute α', not against the platform).
+// Frames: the position-gyro platform's own (tools/devices/position_gyro_platform/
+// position_gyro_platform_signals.toml, docs/icd/position_gyro_platform.md): in, platform_torquer_Nm = M1^KP,
+// gyro_torquer_Nm = M2^K [N m] (no brake: the safe state's zero torques leave the platform free); out,
+// pickoff_rad = δ − α (the pick-off, with noise) [rad]; platform_rad = δ, platform_rate_rad_s = δ' (the
+// platform, absolute); inner_gimbal_rad = β; gyro_frame_rate_rad_s = α', inner_gimbal_rate_rad_s = β'
+// (absolute α', not against the platform).
 // Random streams of the scene seed (seeded_rng.hpp): 1 the pick-off.
 // Allocation-free after construction. Docs: docs/models/position-gyro-platform.md. Oracle:
 // tests/oracle/position_gyro_platform_test.cpp; the shipped scene runs in tests/determinism and tests/alloc.
@@ -20,8 +21,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/position_gyro_platform_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/position_gyro_platform.hpp"
@@ -43,6 +43,8 @@ struct PositionGyroPlatformPlantParams {
 
 class PositionGyroPlatformPlant {
  public:
+  using SensorFrame = msg::position_gyro_platform::SensorFrame;
+  using ActuatorFrame = msg::position_gyro_platform::ActuatorFrame;
   using Model = models::PositionGyroPlatform;
   using State = Model::State;
   using Inputs = Model::Inputs;
@@ -62,19 +64,19 @@ class PositionGyroPlatformPlant {
     x_ = State::Zero();
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
-    f.gimbal_angle_rad[msg::kAxis1] = pickoff_rad() + noise_.sample(rng_);
-    f.carrier_angle_rad[msg::kRoll] = x_[Model::kDelta];
-    f.carrier_rate_rad_s[msg::kRoll] = x_[Model::kDeltaRate];
-    f.gimbal_angle_rad[msg::kAxis2] = x_[Model::kBeta];
-    f.gimbal_rate_rad_s[msg::kAxis1] = x_[Model::kAlphaRate];
-    f.gimbal_rate_rad_s[msg::kAxis2] = x_[Model::kBetaRate];
+    f.pickoff_rad = pickoff_rad() + noise_.sample(rng_);
+    f.platform_rad = x_[Model::kDelta];
+    f.platform_rate_rad_s = x_[Model::kDeltaRate];
+    f.inner_gimbal_rad = x_[Model::kBeta];
+    f.gyro_frame_rate_rad_s = x_[Model::kAlphaRate];
+    f.inner_gimbal_rate_rad_s = x_[Model::kBetaRate];
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
-    model_.inputs.platform_torque = cmd.gimbal_torque_Nm[msg::kAxis1];
-    model_.inputs.gyro_torque = cmd.gimbal_torque_Nm[msg::kAxis2];
+  void actuate(const ActuatorFrame& cmd) {
+    model_.inputs.platform_torque = cmd.platform_torquer_Nm;
+    model_.inputs.gyro_torque = cmd.gyro_torquer_Nm;
   }
 
   // The disturbance of tick `tick` (held over it); then integrate [k, k + 1).

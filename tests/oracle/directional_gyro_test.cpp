@@ -37,8 +37,8 @@ constexpr double kRadSToDegH = 180.0 / kPi * 3600.0;
 struct ClosedLoop {
   plants::DirectionalGyroPlant plant;
   firmware::DirectionalGyroCorrectionParams law;
-  msg::SensorFrame frame{};
-  msg::ActuatorFrame cmd{};
+  plants::DirectionalGyroPlant::SensorFrame frame{};
+  plants::DirectionalGyroPlant::ActuatorFrame cmd{};
   firmware::DirectionalGyroTorques last{};
 
   ClosedLoop(const plants::DirectionalGyroPlantParams& p, const plants::PlantTiming& t,
@@ -47,10 +47,10 @@ struct ClosedLoop {
   void tick(std::int64_t k) {
     plant.sense(k, frame);
     last = firmware::directional_gyro_corrections(
-        law, {frame.gimbal_angle_rad[msg::kAxis1], frame.gimbal_angle_rad[msg::kAxis2],
-              frame.carrier_angle_rad[msg::kYaw], frame.carrier_rate_rad_s[msg::kYaw]});
-    cmd.gimbal_torque_Nm[msg::kAxis1] = last.M1;
-    cmd.gimbal_torque_Nm[msg::kAxis2] = last.M2;
+        law, {frame.indicated_heading_rad, frame.inner_gimbal_rad, frame.compass_heading_rad,
+              frame.case_yaw_rate_rad_s});
+    cmd.outer_torquer_Nm = last.M1;
+    cmd.inner_torquer_Nm = last.M2;
     plant.actuate(cmd);
     plant.advance(k);
   }

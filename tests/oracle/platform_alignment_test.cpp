@@ -69,21 +69,20 @@ struct Loop {
     p = &plant_obj;
     PlatformAlignmentLoops loops(law, kT);
     const firmware::PlatformAlignmentGains g = loops.gains();
-    msg::ActuatorFrame applied{};
-    applied.gimbal_torque_Nm[msg::kAxis2] = -plant.H * g.Omega_N;
-    applied.motor_voltage_V[msg::kAxis1] = g.Omega_U / plant.azimuth_torquer_scale;
+    plants::PlatformAlignmentPlant::ActuatorFrame applied{};
+    applied.north_torquer_Nm = -plant.H * g.Omega_N;
+    applied.zenith_torquer_V = g.Omega_U / plant.azimuth_torquer_scale;
     const auto n = static_cast<std::int64_t>(std::llround(seconds / kT));
     for (std::int64_t k = 0; k < n; ++k) {
-      msg::SensorFrame f;
+      plants::PlatformAlignmentPlant::SensorFrame f;
       plant_obj.sense(k, f);
-      const firmware::PlatformAlignmentCommand c =
-          loops.step(f.carrier_angle_rad[msg::kRoll], f.carrier_angle_rad[msg::kPitch]);
+      const firmware::PlatformAlignmentCommand c = loops.step(f.theta_east_rad, f.theta_north_rad);
       plant_obj.actuate(applied);
       plant_obj.advance(k);
-      applied = msg::ActuatorFrame{};
-      applied.gimbal_torque_Nm[msg::kAxis1] = c.M_east;
-      applied.gimbal_torque_Nm[msg::kAxis2] = c.M_north;
-      applied.motor_voltage_V[msg::kAxis1] = c.u_zenith;
+      applied = plants::PlatformAlignmentPlant::ActuatorFrame{};
+      applied.east_torquer_Nm = c.M_east;
+      applied.north_torquer_Nm = c.M_north;
+      applied.zenith_torquer_V = c.u_zenith;
       if (!fn(static_cast<double>(k + 1) * kT, plant_obj.misalignment(), loops)) break;
     }
     p = nullptr;

@@ -174,36 +174,75 @@ TEST(SchulerLoopLaw, IntegratorTorqueResetAndChecks) {
   EXPECT_FALSE(check_schuler_loop(bad, T).ok);
 }
 
-msg::SensorFrame frame(std::uint64_t k) {
-  msg::SensorFrame f{};
+// The header of a test frame for tick k (1 ms ticks).
+template <class Frame>
+Frame frame_header(std::uint64_t k) {
+  Frame f{};
   f.tick = k;
   f.time_ns = static_cast<std::int64_t>(k) * 1'000'000;
   f.sample_time_ns = f.time_ns;
   f.sequence = static_cast<std::uint32_t>(k);
-  f.gimbal_angle_rad[msg::kAxis1] = 0.01;
-  f.gimbal_angle_rad[msg::kAxis2] = -0.02;
-  f.gimbal_rate_rad_s[msg::kAxis1] = 1e-3;
-  f.gimbal_rate_rad_s[msg::kAxis2] = -2e-3;
-  f.carrier_angle_rad[msg::kRoll] = 3e-4;
-  f.carrier_angle_rad[msg::kPitch] = -1e-4;
-  f.carrier_rate_rad_s[msg::kYaw] = 0.02;
   return f;
 }
 
-template <class Controller>
-void expect_hold_then_safe(Controller& c) {
-  msg::ActuatorFrame out{};
+msg::gyro_vertical::SensorFrame gyro_vertical_frame(std::uint64_t k) {
+  msg::gyro_vertical::SensorFrame f = frame_header<msg::gyro_vertical::SensorFrame>(k);
+  f.indicated_bank_rad = 3e-4;
+  f.indicated_pitch_rad = -1e-4;
+  f.turn_indicator_rad_s = 0.02;
+  f.erection_e1_rad = 0.01;
+  f.erection_e2_rad = -0.02;
+  f.alpha_rate_rad_s = 1e-3;
+  f.beta_rate_rad_s = -2e-3;
+  return f;
+}
+
+msg::gyrocompass::SensorFrame gyrocompass_frame(std::uint64_t k) {
+  msg::gyrocompass::SensorFrame f = frame_header<msg::gyrocompass::SensorFrame>(k);
+  f.indicated_heading_rad = 0.3;
+  f.follow_up_rad = -0.3;
+  f.level_rad = -0.02;
+  f.azimuth_rate_rad_s = 1e-3;
+  f.elevation_rate_rad_s = -2e-3;
+  return f;
+}
+
+msg::inertial_platform::SensorFrame inertial_platform_frame(std::uint64_t k) {
+  msg::inertial_platform::SensorFrame f = frame_header<msg::inertial_platform::SensorFrame>(k);
+  f.theta1_rad = 3e-4;
+  f.theta2_rad = -1e-4;
+  f.gyro_angle1_rad = 0.01;
+  f.gyro_angle2_rad = -0.02;
+  f.gyro_rate1_rad_s = 1e-3;
+  f.gyro_rate2_rad_s = -2e-3;
+  return f;
+}
+
+// The two torquer commands of a device's actuator frame.
+struct Torques {
+  double m1, m2;
+};
+Torques torques(const msg::gyro_vertical::ActuatorFrame& out) { return {out.torquer1_Nm, out.torquer2_Nm}; }
+Torques torques(const msg::gyrocompass::ActuatorFrame& out) {
+  return {out.vertical_torquer_Nm, out.east_torquer_Nm};
+}
+Torques torques(const msg::inertial_platform::ActuatorFrame& out) { return {out.torquer1_Nm, out.torquer2_Nm}; }
+
+// A missing frame is held once, then the safe state: zero torque.
+template <class Controller, class MakeFrame>
+void expect_hold_then_safe(Controller& c, MakeFrame frame_of) {
+  typename Controller::ActuatorFrame out{};
   for (std::uint64_t k = 0; k < 5; ++k) c.step(k, nullptr, out);  // awaiting the first frame: safe values
-  msg::SensorFrame f = frame(5);
+  typename Controller::SensorFrame f = frame_of(5);
   c.step(5, &f, out);
-  const double m1 = out.gimbal_torque_Nm[msg::kAxis1];
+  const double m1 = torques(out).m1;
   c.step(6, nullptr, out);  // held
   EXPECT_TRUE(out.status & msg::bit(msg::FaultBit::kHoldingLastGood));
-  EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis1], m1);
+  EXPECT_EQ(torques(out).m1, m1);
   c.step(7, nullptr, out);  // safe state: zero torque
   EXPECT_TRUE(out.status & msg::bit(msg::FaultBit::kSafeState));
-  EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis1], 0.0);
-  EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis2], 0.0);
+  EXPECT_EQ(torques(out).m1, 0.0);
+  EXPECT_EQ(torques(out).m2, 0.0);
 }
 
 TEST(GyroInstrumentControllers, GyroVerticalMapsTheFrameOntoTheLaw) {
@@ -213,26 +252,25 @@ TEST(GyroInstrumentControllers, GyroVerticalMapsTheFrameOntoTheLaw) {
   cfg.law.turn_cutout_rate = 0.05;
   GyroVerticalController c(cfg);
   ASSERT_TRUE(c.armed());
-  msg::SensorFrame f = frame(0);
-  msg::ActuatorFrame out{};
+  msg::gyro_vertical::SensorFrame f = gyro_vertical_frame(0);
+  msg::gyro_vertical::ActuatorFrame out{};
   c.step(0, &f, out);
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis1], -0.002 * 0.01 - 0.01 * -0.02);  // −c1 e1 − f1 e2
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis2], -0.002 * -0.02 + 0.01 * 0.01);  // −c2 e2 + f2 e1
-  EXPECT_EQ(out.precession_brake, 0.0);
-  f = frame(1);
-  f.carrier_rate_rad_s[msg::kYaw] = 0.06;  // turning: cut out
+  EXPECT_DOUBLE_EQ(out.torquer1_Nm, -0.002 * 0.01 - 0.01 * -0.02);  // −c1 e1 − f1 e2
+  EXPECT_DOUBLE_EQ(out.torquer2_Nm, -0.002 * -0.02 + 0.01 * 0.01);  // −c2 e2 + f2 e1
+  f = gyro_vertical_frame(1);
+  f.turn_indicator_rad_s = 0.06;  // turning: cut out
   c.step(1, &f, out);
-  EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis1], 0.0);
+  EXPECT_EQ(out.torquer1_Nm, 0.0);
   EXPECT_TRUE(out.status & bit(LawStatusBit::kCorrectionCutOut));
   GyroVerticalController h(cfg);
-  expect_hold_then_safe(h);
+  expect_hold_then_safe(h, gyro_vertical_frame);
   GyroVerticalConfig bad = cfg;
   bad.law.f1 = -1;
   GyroVerticalController r(bad);
   EXPECT_FALSE(r.armed());
   r.step(0, &f, out);
   EXPECT_TRUE(out.status & bit(LawStatusBit::kConfigRefused));
-  EXPECT_EQ(out.gimbal_torque_Nm[msg::kAxis1], 0.0);
+  EXPECT_EQ(out.torquer1_Nm, 0.0);
 }
 
 TEST(GyroInstrumentControllers, GyrocompassMapsTheLevelSensor) {
@@ -241,13 +279,13 @@ TEST(GyroInstrumentControllers, GyrocompassMapsTheLevelSensor) {
   cfg.law = {2.0, 0.0015, 0.06, 0.1};
   GyrocompassController c(cfg);
   ASSERT_TRUE(c.armed());
-  msg::SensorFrame f = frame(0);
-  msg::ActuatorFrame out{};
+  msg::gyrocompass::SensorFrame f = gyrocompass_frame(0);
+  msg::gyrocompass::ActuatorFrame out{};
   c.step(0, &f, out);
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis1], -0.0015 * -0.02);
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis2], -0.06 * -0.02);
+  EXPECT_DOUBLE_EQ(out.vertical_torquer_Nm, -0.0015 * -0.02);  // M1 = −f β_lvl
+  EXPECT_DOUBLE_EQ(out.east_torquer_Nm, -0.06 * -0.02);        // M2 = −c_e β_lvl
   GyrocompassController h(cfg);
-  expect_hold_then_safe(h);
+  expect_hold_then_safe(h, gyrocompass_frame);
 }
 
 TEST(GyroInstrumentControllers, InertialPlatformRunsTheSchulerLoopOnTheCarrierTilts) {
@@ -257,15 +295,15 @@ TEST(GyroInstrumentControllers, InertialPlatformRunsTheSchulerLoopOnTheCarrierTi
   cfg.law.initial_rate[0] = 1e-5;
   InertialPlatformController c(cfg);
   ASSERT_TRUE(c.armed());
-  msg::SensorFrame f = frame(0);
-  msg::ActuatorFrame out{};
+  msg::inertial_platform::SensorFrame f = inertial_platform_frame(0);
+  msg::inertial_platform::ActuatorFrame out{};
   c.step(0, &f, out);
   const double g0R = cfg.law.gravity_scale / cfg.law.radius * 5e-3;
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis1], -0.05 * (1e-5 - g0R * 3e-4));
-  EXPECT_DOUBLE_EQ(out.gimbal_torque_Nm[msg::kAxis2], -0.05 * (0.0 - g0R * -1e-4));
+  EXPECT_DOUBLE_EQ(out.torquer1_Nm, -0.05 * (1e-5 - g0R * 3e-4));
+  EXPECT_DOUBLE_EQ(out.torquer2_Nm, -0.05 * (0.0 - g0R * -1e-4));
   EXPECT_DOUBLE_EQ(c.velocity_estimate(0), cfg.law.radius * (1e-5 - g0R * 3e-4));
   InertialPlatformController h(cfg);
-  expect_hold_then_safe(h);
+  expect_hold_then_safe(h, inertial_platform_frame);
 }
 
 TEST(GyroInstrumentControllers, NoHeapOverAMillionSteps) {
@@ -277,14 +315,18 @@ TEST(GyroInstrumentControllers, NoHeapOverAMillionSteps) {
   GyroVerticalController a(gv);
   GyrocompassController b(gc);
   InertialPlatformController c(ip);
-  msg::ActuatorFrame out{};
+  msg::gyro_vertical::ActuatorFrame out_gv{};
+  msg::gyrocompass::ActuatorFrame out_gc{};
+  msg::inertial_platform::ActuatorFrame out_ip{};
   const std::uint64_t before = testing::allocations_so_far();
   for (std::uint64_t k = 0; k < 1'000'000; ++k) {
-    msg::SensorFrame f = frame(k);
+    msg::gyro_vertical::SensorFrame f_gv = gyro_vertical_frame(k);
+    msg::gyrocompass::SensorFrame f_gc = gyrocompass_frame(k);
+    msg::inertial_platform::SensorFrame f_ip = inertial_platform_frame(k);
     const bool drop = (k % 1000) == 999;
-    a.step(k, drop ? nullptr : &f, out);
-    b.step(k, drop ? nullptr : &f, out);
-    c.step(k, drop ? nullptr : &f, out);
+    a.step(k, drop ? nullptr : &f_gv, out_gv);
+    b.step(k, drop ? nullptr : &f_gc, out_gc);
+    c.step(k, drop ? nullptr : &f_ip, out_ip);
   }
   EXPECT_EQ(testing::allocations_so_far() - before, 0u);
 }

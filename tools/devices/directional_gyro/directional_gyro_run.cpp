@@ -14,6 +14,7 @@
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/analysis/manoeuvre_segment_log.hpp"
+#include "gyrostab_signals/directional_gyro_outputs.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/directional_gyro/directional_gyro_scene.hpp"
 #include "tools/devices/directional_gyro/directional_gyro_sampled.hpp"
@@ -29,14 +30,6 @@ using Controller = firmware::BasicDirectionalGyroController<firmware::posix::Mon
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRadSToDegH = 180.0 / kPi * 3600.0;
-
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"indicated_heading_rad", "true_heading_rad", "heading_error_rad",
-                                          "compass_rad",           "alpha_rad",        "beta_rad",
-                                          "bank_rad",              "rotor_azimuth_rad", "M1_Nm",
-                                          "M2_Nm",                 "status_bits"};
-  return c;
-}
 
 double wrap(double a) { return std::remainder(a, 2.0 * kPi); }
 double azimuth_of(const dynamics::Vec3& ned) { return std::atan2(ned.y(), ned.x()); }
@@ -63,6 +56,10 @@ struct SegmentRecord : analysis::SegmentSpan {
 
 class DirectionalGyroRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::directional_gyro::Record;
+
   explicit DirectionalGyroRun(const DirectionalGyroScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -77,12 +74,12 @@ class DirectionalGyroRun {
     begin_segment(segments_.current());
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     plant_.sense(tick, f);
-    compass_ = f.carrier_angle_rad[msg::kYaw];
+    compass_ = f.compass_heading_rad;
     if (tick % fit_every_ == 0) fit_.add(static_cast<double>(tick) * s_.loop.tick_s(), plant_.beta_rad());
   }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
     if ((cmd.status & firmware::bit(firmware::LawStatusBit::kCorrectionCutOut)) != 0u) {
@@ -134,18 +131,18 @@ class DirectionalGyroRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
-    row[0] = plant_.indicated_heading_rad();
-    row[1] = plant_.true_heading_rad();
-    row[2] = wrap(plant_.indicated_heading_rad() - plant_.true_heading_rad());
-    row[3] = compass_;
-    row[4] = plant_.alpha_rad();
-    row[5] = plant_.beta_rad();
-    row[6] = plant_.bank_rad();
-    row[7] = azimuth_of(plant_.rotor_axis_ned());
-    row[8] = last_.gimbal_torque_Nm[msg::kAxis1];
-    row[9] = last_.gimbal_torque_Nm[msg::kAxis2];
-    row[10] = static_cast<double>(last_.status);
+  void record(Record& r) const {
+    r.indicated_heading_rad = plant_.indicated_heading_rad();
+    r.true_heading_rad = plant_.true_heading_rad();
+    r.heading_error_rad = wrap(plant_.indicated_heading_rad() - plant_.true_heading_rad());
+    r.compass_rad = compass_;
+    r.alpha_rad = plant_.alpha_rad();
+    r.beta_rad = plant_.beta_rad();
+    r.bank_rad = plant_.bank_rad();
+    r.rotor_azimuth_rad = azimuth_of(plant_.rotor_axis_ned());
+    r.M1_Nm = last_.outer_torquer_Nm;
+    r.M2_Nm = last_.inner_torquer_Nm;
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -274,7 +271,7 @@ class DirectionalGyroRun {
   const DirectionalGyroScene& s_;
   Plant plant_;
   analysis::HalfStepWindow<Plant::Model, Plant::Inputs> window_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   analysis::ManoeuvreSegmentLog<SegmentRecord> segments_;
   double indicated0_;  // the indication at t = 0, unwrapped [rad]
   double heading_prev_{0.0}, azimuth_prev_{0.0}, heading_turned_{0.0};
@@ -291,7 +288,6 @@ struct DirectionalGyroTraits {
   using Scene = DirectionalGyroScene;
   using Binding = DirectionalGyroRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   static nlohmann::json limits(const Scene& s) {
     const auto& law = s.controller.law;
     nlohmann::json l{{"torquer_limit_Nm", law.torque_limit_Nm}};

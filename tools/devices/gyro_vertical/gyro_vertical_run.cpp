@@ -26,6 +26,7 @@
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/planar_mode_fit.hpp"
 #include "sim/analysis/manoeuvre_segment_log.hpp"
+#include "gyrostab_signals/gyro_vertical_outputs.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/gyro_vertical/gyro_vertical_sampled.hpp"
 #include "tools/devices/gyro_vertical/gyro_vertical_scene.hpp"
@@ -39,13 +40,6 @@ using Plant = plants::GyroVerticalPlant;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
 using Controller = firmware::BasicGyroVerticalController<firmware::posix::MonotonicClock>;
 
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"alpha_rad",  "beta_rad", "alpha_L_rad",     "beta_L_rad",
-                                          "M1_Nm",      "M2_Nm",    "turn_rate_rad_s", "turn_indicator_rad_s",
-                                          "status_bits"};
-  return c;
-}
-
 struct SegmentRecord : analysis::SegmentSpan {
   bool cut_out{false};
   double alpha_start{0.0}, beta_start{0.0};  // [rad]
@@ -57,6 +51,10 @@ struct SegmentRecord : analysis::SegmentSpan {
 
 class GyroVerticalRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::gyro_vertical::Record;
+
   explicit GyroVerticalRun(const GyroVerticalScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -75,7 +73,7 @@ class GyroVerticalRun {
     noise_u_.fill(Eigen::Vector2d::Zero());
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     plant_.sense(tick, f);
     if (!(window_end_ > 0.0) || static_cast<double>(tick) * s_.loop.tick_s() > window_end_) return;
     const std::int64_t k = tick;
@@ -87,8 +85,8 @@ class GyroVerticalRun {
     double e[4];
     plant_.model().erection_signal(t, plant_.state(), e[0], e[1]);
     plant_.model().rates(t, plant_.state(), e[2], e[3]);
-    const Eigen::Vector4d v(f.gimbal_angle_rad[msg::kAxis1] - e[0], f.gimbal_angle_rad[msg::kAxis2] - e[1],
-                            f.gimbal_rate_rad_s[msg::kAxis1] - e[2], f.gimbal_rate_rad_s[msg::kAxis2] - e[3]);
+    const Eigen::Vector4d v(f.erection_e1_rad - e[0], f.erection_e2_rad - e[1], f.alpha_rate_rad_s - e[2],
+                            f.beta_rate_rad_s - e[3]);
     const std::size_t slots = noise_u_.size(), L = static_cast<std::size_t>(s_.loop.latency_ticks);
     noise_u_[static_cast<std::size_t>(k) % slots] = erection_.Kx * noise_x_ + erection_.Kv * v;
     const Eigen::Vector2d applied = static_cast<std::size_t>(k) >= L
@@ -104,7 +102,7 @@ class GyroVerticalRun {
     }
     noise_x_ = erection_.Phi * noise_x_ + erection_.Gamma * applied;
   }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
     if ((cmd.status & firmware::bit(firmware::LawStatusBit::kCorrectionCutOut)) != 0u) {
@@ -145,17 +143,17 @@ class GyroVerticalRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
+  void record(Record& r) const {
     const models::ApparentVertical L = plant_.apparent_vertical();
-    row[0] = plant_.alpha_rad();
-    row[1] = plant_.beta_rad();
-    row[2] = L.alpha_L;
-    row[3] = L.beta_L;
-    row[4] = last_.gimbal_torque_Nm[msg::kAxis1];
-    row[5] = last_.gimbal_torque_Nm[msg::kAxis2];
-    row[6] = plant_.turn_rate_rad_s();
-    row[7] = plant_.turn_indicator_rad_s();
-    row[8] = static_cast<double>(last_.status);
+    r.alpha_rad = plant_.alpha_rad();
+    r.beta_rad = plant_.beta_rad();
+    r.alpha_L_rad = L.alpha_L;
+    r.beta_L_rad = L.beta_L;
+    r.M1_Nm = last_.torquer1_Nm;
+    r.M2_Nm = last_.torquer2_Nm;
+    r.turn_rate_rad_s = plant_.turn_rate_rad_s();
+    r.turn_indicator_rad_s = plant_.turn_indicator_rad_s();
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -341,7 +339,7 @@ class GyroVerticalRun {
   const GyroVerticalScene& s_;
   Plant plant_;
   analysis::HalfStepWindow<Plant::Model, Plant::Inputs> window_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   analysis::ManoeuvreSegmentLog<SegmentRecord> segments_;
   double alpha_peak_{0.0};
   std::int64_t late_from_;
@@ -364,7 +362,6 @@ struct GyroVerticalTraits {
   using Scene = GyroVerticalScene;
   using Binding = GyroVerticalRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   static nlohmann::json limits(const Scene& s) {
     const auto& law = s.controller.law;
     nlohmann::json l{{"torquer_limit_Nm", law.torque_limit_Nm}};

@@ -23,6 +23,7 @@
 #include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/analysis/sampled_loop_roots.hpp"
 #include "sim/analysis/manoeuvre_segment_log.hpp"
+#include "gyrostab_signals/gyrocompass_outputs.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/gyrocompass/gyrocompass_sampled.hpp"
 #include "tools/devices/gyrocompass/gyrocompass_scene.hpp"
@@ -38,13 +39,6 @@ using Controller = firmware::BasicGyrocompassController<firmware::posix::Monoton
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"alpha_rad", "beta_rad",   "alpha_eq_rad", "level_rad",
-                                          "M1_Nm",     "M2_Nm",      "latitude_deg", "heading_deg",
-                                          "swing_rad", "status_bits"};
-  return c;
-}
-
 struct CompassSegment : analysis::SegmentSpan {
   double alpha_end{0.0}, alpha_eq_end{0.0}, speed_dev_end{0.0}, latitude_end{0.0};
   double v_north_end{0.0}, v_east_end{0.0}, heading_end{0.0};
@@ -54,6 +48,10 @@ struct CompassSegment : analysis::SegmentSpan {
 
 class GyrocompassRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::gyrocompass::Record;
+
   explicit GyrocompassRun(const GyrocompassScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -64,8 +62,8 @@ class GyrocompassRun {
         // α every extrema_sample_s from 600 s (the nutation, at 0.1 /s, has decayed by e^-60) to the end.
         fit_(600.0, s.loop.duration_s, static_cast<double>(s.extrema_every_ticks) * s.loop.tick_s(), 4) {}
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void sense(std::int64_t tick, SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -97,18 +95,18 @@ class GyrocompassRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
+  void record(Record& r) const {
     const double t = static_cast<double>(ticks_) * s_.loop.tick_s();
-    row[0] = plant_.alpha_rad();
-    row[1] = plant_.beta_rad();
-    row[2] = book_alpha_eq(plant_.frame());
-    row[3] = plant_.level_rad(t);
-    row[4] = last_.gimbal_torque_Nm[msg::kAxis1];
-    row[5] = last_.gimbal_torque_Nm[msg::kAxis2];
-    row[6] = plant_.motion().latitude / kDeg;
-    row[7] = plant_.motion().heading / kDeg;
-    row[8] = plant_.swing_rad();
-    row[9] = static_cast<double>(last_.status);
+    r.alpha_rad = plant_.alpha_rad();
+    r.beta_rad = plant_.beta_rad();
+    r.alpha_eq_rad = book_alpha_eq(plant_.frame());
+    r.level_rad = plant_.level_rad(t);
+    r.M1_Nm = last_.vertical_torquer_Nm;
+    r.M2_Nm = last_.east_torquer_Nm;
+    r.latitude_deg = plant_.motion().latitude / kDeg;
+    r.heading_deg = plant_.motion().heading / kDeg;
+    r.swing_rad = plant_.swing_rad();
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   bool at_rest() const {
@@ -256,7 +254,7 @@ class GyrocompassRun {
   const GyrocompassScene& s_;
   Plant plant_;
   analysis::HalfStepWindow<Plant::Model, Plant::Inputs> window_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   analysis::ExtremaMeter<64> alpha_extrema_, beta_extrema_;
   analysis::ManoeuvreSegmentLog<CompassSegment> segments_;
   analysis::LinearPredictionMeter fit_;
@@ -267,7 +265,6 @@ struct GyrocompassTraits {
   using Scene = GyrocompassScene;
   using Binding = GyrocompassRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   static nlohmann::json limits(const Scene& s) {     return {{"torquer_limit_Nm", s.controller.law.torque_limit_Nm}}; }
 };
 

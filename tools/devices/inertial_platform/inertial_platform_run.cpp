@@ -22,6 +22,7 @@
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/models/inertial_platform_stability.hpp"
+#include "gyrostab_signals/inertial_platform_outputs.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/inertial_platform/inertial_platform_sampled.hpp"
 #include "tools/devices/inertial_platform/inertial_platform_scene.hpp"
@@ -34,11 +35,9 @@ namespace {
 using Controller = firmware::BasicInertialPlatformController<firmware::posix::MonotonicClock>;
 constexpr double kPi = std::numbers::pi;
 
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"tilt1_rad",  "tilt2_rad",           "theta1_rad",
-                                          "theta2_rad", "torquer1_Nm",         "torquer2_Nm",
-                                          "gyro1_rad",  "velocity_error1_m_s", "status_bits"};
-  return c;
+// Channel i's torquer command (torquer1_Nm, torquer2_Nm) [N m].
+double torquer_Nm(const plants::InertialPlatformActuatorFrame& cmd, int i) {
+  return i == 0 ? cmd.torquer1_Nm : cmd.torquer2_Nm;
 }
 
 // The Schuler mode measured: a recurrence fitted to the tilt sampled every extrema_sample_s over the whole run
@@ -60,6 +59,10 @@ class InertialPlatformRun {
   static constexpr int kChannels = Plant::kChannels;
 
  public:
+  using SensorFrame = typename Plant::SensorFrame;
+  using ActuatorFrame = typename Plant::ActuatorFrame;
+  using Record = msg::inertial_platform::Record;
+
   explicit InertialPlatformRun(const InertialPlatformScene& s)
       : s_(s), plant_(s.plant, s.loop.plant_timing()), window_(s.loop.ticks() / 2, 1000) {
     const double dt = static_cast<double>(s.extrema_every_ticks) * s.loop.tick_s();
@@ -71,8 +74,8 @@ class InertialPlatformRun {
     remember_rates(0);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void sense(std::int64_t tick, SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -96,7 +99,7 @@ class InertialPlatformRun {
       }
       // The loop's velocity estimate from its torquer command; the channel's true v = ±R Ω at the time
       // the command estimates (the end of the control step it came from, latency_ticks earlier).
-      const double w_cmd = -last_.gimbal_torque_Nm[i] / HL;
+      const double w_cmd = -torquer_Nm(last_, i) / HL;
       const double v_err = RL * w_cmd - R * rate_history(tick + 1 - s_.loop.latency_ticks, i);
       c.velocity_error_max = std::max(c.velocity_error_max, std::fabs(v_err));
       c.position_error += v_err * s_.loop.tick_s();
@@ -109,27 +112,27 @@ class InertialPlatformRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
+  void record(Record& r) const {
     const double t = static_cast<double>(ticks_) * s_.loop.tick_s();
     double theta[2];
     plant_.apparent_tilts(t, theta);
-    row[0] = plant_.tilt_rad(0);
-    row[1] = kChannels > 1 ? plant_.tilt_rad(1) : 0.0;
-    row[2] = theta[0];
-    row[3] = theta[1];
-    row[4] = last_.gimbal_torque_Nm[msg::kAxis1];
-    row[5] = last_.gimbal_torque_Nm[msg::kAxis2];
-    row[6] = plant_.gyro_angle_rad(0);
-    row[7] = s_.controller.law.radius * (-last_.gimbal_torque_Nm[0] / s_.controller.law.H) -
-             s_.plant.vehicle.earth.radius * rate_history(ticks_ - s_.loop.latency_ticks, 0);
-    row[8] = static_cast<double>(last_.status);
+    r.tilt1_rad = plant_.tilt_rad(0);
+    r.tilt2_rad = kChannels > 1 ? plant_.tilt_rad(1) : 0.0;
+    r.theta1_rad = theta[0];
+    r.theta2_rad = theta[1];
+    r.torquer1_Nm = last_.torquer1_Nm;
+    r.torquer2_Nm = last_.torquer2_Nm;
+    r.gyro1_rad = plant_.gyro_angle_rad(0);
+    r.velocity_error1_m_s = s_.controller.law.radius * (-last_.torquer1_Nm / s_.controller.law.H) -
+                            s_.plant.vehicle.earth.radius * rate_history(ticks_ - s_.loop.latency_ticks, 0);
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   // The loop's initial torque: the level frame's rate at t = 0 (no start transient).
-  msg::ActuatorFrame initial_command() const {
-    msg::ActuatorFrame a{};
-    for (int i = 0; i < kChannels; ++i)
-      a.gimbal_torque_Nm[i] = -s_.controller.law.H * s_.controller.law.initial_rate[i];
+  ActuatorFrame initial_command() const {
+    ActuatorFrame a{};
+    a.torquer1_Nm = -s_.controller.law.H * s_.controller.law.initial_rate[0];
+    if constexpr (kChannels > 1) a.torquer2_Nm = -s_.controller.law.H * s_.controller.law.initial_rate[1];
     return a;
   }
 
@@ -227,7 +230,7 @@ class InertialPlatformRun {
   const InertialPlatformScene& s_;
   Plant plant_;
   analysis::HalfStepWindow<Model, typename Model::Inputs> window_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   std::array<ChannelStats, 2> stats_{};
   std::array<std::array<double, 2>, static_cast<std::size_t>(kHistory)> rate_hist_{};
   std::int64_t ticks_{0};
@@ -235,8 +238,9 @@ class InertialPlatformRun {
 
 struct InertialPlatformTraits {
   using Scene = InertialPlatformScene;
+  // Every variant records the same Record (the table's columns); make_plant picks the scene's variant.
+  using Binding = InertialPlatformRun<models::ThreeAxisPlatform>;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   static nlohmann::json limits(const Scene& s) {     return {{"torquer_limit_Nm", s.controller.law.torque_limit_Nm}}; }
   static std::unique_ptr<PlantPort> make_plant(const Scene& s, const PlantOptions&) {
     if (s.plant.axes == 1) return make_plant_port<InertialPlatformRun<models::SingleAxisPlatform>>(s);

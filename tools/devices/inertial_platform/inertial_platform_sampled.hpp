@@ -42,9 +42,9 @@ std::optional<InertialPlatformSampled> inertial_platform_sampled(const InertialP
   const typename Model::State x0 = plant.state();
   const double t0 = m.inputs.frame.t0;
   const auto f = [&](const typename Model::State& x, const double (&u)[2]) {
-    msg::ActuatorFrame cmd{};
-    cmd.gimbal_torque_Nm[msg::kAxis1] = u[0];
-    cmd.gimbal_torque_Nm[msg::kAxis2] = u[1];
+    typename Plant::ActuatorFrame cmd{};
+    cmd.torquer1_Nm = u[0];
+    cmd.torquer2_Nm = u[1];
     Axes::set_torquers(m, cmd);
     typename Model::State dx;
     m.derivative(t0, x, dx);

@@ -16,6 +16,7 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/linear_prediction_fit.hpp"
+#include "gyrostab_signals/platform_alignment_outputs.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/platform_alignment/platform_alignment_sampled.hpp"
 #include "tools/devices/platform_alignment/platform_alignment_scene.hpp"
@@ -28,20 +29,16 @@ using Plant = plants::PlatformAlignmentPlant;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
 using Controller = firmware::BasicPlatformAlignmentController<firmware::posix::MonotonicClock>;
 
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"tilt_east_rad",     "tilt_north_rad",   "heading_error_rad",
-                                          "accel_east_m_s2",   "accel_north_m_s2", "accel_up_m_s2",
-                                          "rate_east_rad_s",   "rate_north_rad_s", "rate_zenith_rad_s",
-                                          "status_bits"};
-  return c;
-}
-
 nlohmann::json or_null(bool have, double v) {
   return have ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
 class PlatformAlignmentRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::platform_alignment::Record;
+
   explicit PlatformAlignmentRun(const PlatformAlignmentScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -60,24 +57,24 @@ class PlatformAlignmentRun {
 
   // The errors of the apparent tilts the firmware reads (sensed − the model's accelerometers at rest): the
   // base's gusts and the noise, the inputs of the fitted recurrence (the biases, constant, go into its c).
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     plant_.sense(tick, f);
     const dynamics::Vec3 a =
         plant_.model().accelerometers(plant_.state(), dynamics::Vec3(0.0, 0.0, s_.plant.gravity));
-    tilt_error_[0] = f.carrier_angle_rad[msg::kRoll] - a.y() / plants::kAlignmentGravityScale;
-    tilt_error_[1] = f.carrier_angle_rad[msg::kPitch] + a.x() / plants::kAlignmentGravityScale;
+    tilt_error_[0] = f.theta_east_rad - a.y() / plants::kAlignmentGravityScale;
+    tilt_error_[1] = f.theta_north_rad + a.x() / plants::kAlignmentGravityScale;
     // The heading error when the frame was read, once the loop is near its equilibrium: below kFitBelowRad.
     if (switch_tick_ >= 0 && tick % divisor_ == 0 &&
         std::fabs(m_.heading_error - steady_.heading_error) < kFitBelowRad)
       fit_.add(static_cast<double>(tick) * s_.loop.tick_s(), m_.heading_error, tilt_error_.data());
   }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
   void advance(std::int64_t tick) {
     // The azimuth phase: the zenith torquer leaves the Earth-rate compensation of the levelling phase.
-    const double u = last_.motor_voltage_V[msg::kAxis1];
+    const double u = last_.zenith_torquer_V;
     if (switch_tick_ < 0 && u != level_command_ && u != 0.0) {  // 0: the safe state's
       switch_tick_ = tick;
       at_switch_ = m_;
@@ -97,23 +94,26 @@ class PlatformAlignmentRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
-    row[0] = m_.tilt_east;
-    row[1] = m_.tilt_north;
-    row[2] = m_.heading_error;
-    for (int i = 0; i < 3; ++i) row[3 + i] = plant_.accelerometers()[static_cast<std::size_t>(i)];
+  void record(Record& r) const {
+    r.tilt_east_rad = m_.tilt_east;
+    r.tilt_north_rad = m_.tilt_north;
+    r.heading_error_rad = m_.heading_error;
+    const std::array<double, 3>& a = plant_.accelerometers();
+    r.accel_east_m_s2 = a[0];
+    r.accel_north_m_s2 = a[1];
+    r.accel_up_m_s2 = a[2];
     const dynamics::Vec3& w = plant_.inputs().rate_command;
-    row[6] = w.x();
-    row[7] = w.y();
-    row[8] = w.z();
-    row[9] = static_cast<double>(last_.status);
+    r.rate_east_rad_s = w.x();
+    r.rate_north_rad_s = w.y();
+    r.rate_zenith_rad_s = w.z();
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   // Until the first command: the platform turns with the geographic frame (caged on the Earth rate).
-  msg::ActuatorFrame initial_command() const {
-    msg::ActuatorFrame a{};
-    a.gimbal_torque_Nm[msg::kAxis2] = -s_.plant.H * g_.Omega_N;
-    a.motor_voltage_V[msg::kAxis1] = level_command_;
+  ActuatorFrame initial_command() const {
+    ActuatorFrame a{};
+    a.north_torquer_Nm = -s_.plant.H * g_.Omega_N;
+    a.zenith_torquer_V = level_command_;
     return a;
   }
 
@@ -203,7 +203,7 @@ class PlatformAlignmentRun {
   firmware::PlatformAlignmentGains g_, g_site_;
   models::PlatformMisalignment steady_;
   double level_command_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   models::PlatformMisalignment m_{}, at_switch_{};
   double east_gyro_at_switch_{0.0};  // ω_IG · P1 at the azimuth phase's start [rad/s]
   bool in_tolerance_{false};
@@ -227,7 +227,6 @@ struct PlatformAlignmentTraits {
   using Scene = PlatformAlignmentScene;
   using Binding = PlatformAlignmentRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   static nlohmann::json limits(const Scene& s) {
     return {{"heading_tolerance_rad", s.heading_tolerance},
             {"tilt_tolerance_rad", s.tilt_tolerance},

@@ -70,13 +70,13 @@ PlatformAlignmentSampled platform_alignment_sampled(const PlatformAlignmentScene
     wm[i] -= hw;
     Bw.col(i) = (misalignment_rate(m, x0, wp) - misalignment_rate(m, x0, wm)) / (2.0 * hw);
   }
-  // The actuator frame's three slots (M_E, M_N, u_Z) to the rate command, through the plant's own actuate().
+  // The actuator frame's three commands (M_E, M_N, u_Z) to the rate command, through the plant's own actuate().
   plants::PlatformAlignmentPlant plant(s.plant, s.loop.plant_timing());
   const auto rate_of = [&](int slot, double v) {
-    msg::ActuatorFrame f{};
-    if (slot == 0) f.gimbal_torque_Nm[msg::kAxis1] = v;
-    if (slot == 1) f.gimbal_torque_Nm[msg::kAxis2] = v;
-    if (slot == 2) f.motor_voltage_V[msg::kAxis1] = v;
+    plants::PlatformAlignmentPlant::ActuatorFrame f{};
+    if (slot == 0) f.east_torquer_Nm = v;
+    if (slot == 1) f.north_torquer_Nm = v;
+    if (slot == 2) f.zenith_torquer_V = v;
     plant.actuate(f);
     return Vec3(plant.inputs().rate_command);
   };

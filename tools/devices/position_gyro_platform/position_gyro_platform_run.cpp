@@ -21,6 +21,7 @@
 #include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/analysis/sampled_loop_roots.hpp"
 #include "sim/oracles/position_gyro_platform_roots.hpp"
+#include "gyrostab_signals/position_gyro_platform_outputs.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/position_gyro_platform/position_gyro_platform_scene.hpp"
 #include "tools/run/error_estimate_report.hpp"
@@ -31,14 +32,6 @@ namespace {
 using Plant = plants::PositionGyroPlatformPlant;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
 using Controller = firmware::BasicPositionGyroPlatformController<firmware::posix::MonotonicClock>;
-
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"pickoff_rad",       "lag_book_rad",       "platform_rad",
-                                          "platform_rate_rad_s", "gyro_frame_rad",   "beta_rad",
-                                          "platform_torque_Nm", "gyro_torque_Nm",    "disturbance_Nm",
-                                          "base_rad",          "status_bits"};
-  return c;
-}
 
 // Sum over a window of ticks [first, end).
 struct WindowMean {
@@ -56,6 +49,10 @@ nlohmann::json root_json(std::complex<double> r) { return {{"re", r.real()}, {"i
 
 class PositionGyroPlatformRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::position_gyro_platform::Record;
+
   explicit PositionGyroPlatformRun(const PositionGyroPlatformScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -79,11 +76,11 @@ class PositionGyroPlatformRun {
     rate_end_ = stop;
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     plant_.sense(tick, f);
-    pickoff_error_ = f.gimbal_angle_rad[msg::kAxis1] - plant_.pickoff_rad();
+    pickoff_error_ = f.pickoff_rad - plant_.pickoff_rad();
   }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -118,19 +115,19 @@ class PositionGyroPlatformRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
+  void record(Record& r) const {
     const double t = static_cast<double>(ticks_) * s_.loop.tick_s();
-    row[0] = plant_.pickoff_rad();
-    row[1] = plant_.inputs().disturbance / s_.controller.law.k;
-    row[2] = plant_.platform_rad();
-    row[3] = plant_.platform_rate_rad_s();
-    row[4] = plant_.gyro_frame_rad();
-    row[5] = plant_.beta_rad();
-    row[6] = last_.gimbal_torque_Nm[msg::kAxis1];
-    row[7] = last_.gimbal_torque_Nm[msg::kAxis2];
-    row[8] = plant_.inputs().disturbance;
-    row[9] = plant_.base_rad(t);
-    row[10] = static_cast<double>(last_.status);
+    r.pickoff_rad = plant_.pickoff_rad();
+    r.lag_book_rad = plant_.inputs().disturbance / s_.controller.law.k;
+    r.platform_rad = plant_.platform_rad();
+    r.platform_rate_rad_s = plant_.platform_rate_rad_s();
+    r.gyro_frame_rad = plant_.gyro_frame_rad();
+    r.beta_rad = plant_.beta_rad();
+    r.platform_torque_Nm = last_.platform_torquer_Nm;
+    r.gyro_torque_Nm = last_.gyro_torquer_Nm;
+    r.disturbance_Nm = plant_.inputs().disturbance;
+    r.base_rad = plant_.base_rad(t);
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -222,7 +219,7 @@ class PositionGyroPlatformRun {
   double delta_first_{0.0}, delta_end_{0.0}, alpha_first_{0.0}, alpha_end_{0.0};
   bool rate_measured_{false};
   double pickoff_max_{0.0};
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   std::int64_t ticks_{0};
 };
 
@@ -230,7 +227,6 @@ struct PositionGyroPlatformTraits {
   using Scene = PositionGyroPlatformScene;
   using Binding = PositionGyroPlatformRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
 };
 
 }  // namespace
