@@ -17,9 +17,7 @@
 
 #include "firmware/app/controller_runtime.hpp"
 #include "firmware/control/config_check.hpp"
-#include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/any_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
 
 namespace gyrostab::firmware {
 
@@ -56,38 +54,5 @@ class BasicFreeInstrumentControllerOf
   explicit BasicFreeInstrumentControllerOf(const Config& c, Clock clock = Clock{})
       : Base(c.runtime, DriveConfig{}, 0u, Law(c), check(c), clock) {}
 };
-
-// The same on the legacy shared frames, for the instruments not yet on a table of their own.
-struct FreeInstrumentConfig {
-  RuntimeConfig runtime{};
-};
-
-class FreeInstrumentLaw {
- public:
-  explicit FreeInstrumentLaw(const FreeInstrumentConfig&) {}
-
-  void control(const msg::SensorFrame&, msg::ActuatorFrame& cmd) {
-    cmd.gimbal_torque_Nm[msg::kAxis1] = 0.0;
-    cmd.gimbal_torque_Nm[msg::kAxis2] = 0.0;
-    cmd.precession_brake = 0.0;
-  }
-  void reset() {}  // stateless
-};
-
-template <MonotonicClock Clock = NullClock>
-class BasicFreeInstrumentController : public ControllerRuntime<FreeInstrumentLaw, Clock> {
-  using Base = ControllerRuntime<FreeInstrumentLaw, Clock>;
-
- public:
-  using Config = FreeInstrumentConfig;
-
-  static ConfigCheck check(const Config& c) { return check_runtime(c.runtime, DriveConfig{}, 0u); }
-
-  explicit BasicFreeInstrumentController(const Config& c, Clock clock = Clock{})
-      : Base(c.runtime, DriveConfig{}, 0u, FreeInstrumentLaw(c), check(c), clock) {}
-};
-
-using FreeInstrumentController = BasicFreeInstrumentController<>;
-
 
 }  // namespace gyrostab::firmware
