@@ -4,11 +4,10 @@
 //
 // Law: firmware/control/coning_null_law.hpp — θ from the gyro's output angle β (P: integrated (c2/H) β; I:
 // (d2/H) β), V = −(k_p θ + k_i ∫θ)/K_v.
-// Reads (SensorFrame; plant: sim/plants/coning_plant.hpp): gimbal_angle_rad[kAxis2] = β [rad] (also filled, not
-// read: gimbal_rate_rad_s[kAxis2] = β', carrier_angle_rad[kYaw] = platform azimuth relative to the base,
-// carrier_rate_rad_s = the platform's absolute rate).
-// Writes (ActuatorFrame): motor_voltage_V[kAxis1] = V [V]; gimbal torques 0; precession_brake = 0 (1 in the
-// safe state, where the runtime zeroes V: the drive stops and the platform moves with the base);
+// Frames: the coning platform's own (tools/devices/coning/coning_signals.toml, docs/icd/coning.md; plant:
+// sim/plants/coning_plant.hpp). Reads beta_rad = β [rad] (also filled, not read: beta_rate_rad_s = β',
+// platform_azimuth_rad = the platform's azimuth relative to the base, platform_rate_rad_s = its absolute rate).
+// Writes drive_voltage_V = V [V] (0 in the safe state: the drive stops and the platform moves with the base);
 // status kDriveVoltageSaturated + the runtime's. A frame the fault monitor holds (same tick) is not
 // integrated twice: the law repeats its last command.
 // Docs: docs/models/coning.md#firmware-law
@@ -20,30 +19,29 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/coning_null_law.hpp"
 #include "firmware/control/law_status_bits.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/coning_frames.hpp"
 
 namespace gyrostab::firmware {
 
 struct ConingConfig {
-  RuntimeConfig runtime{};
+  RuntimeConfigOf<msg::coning::SensorFrame> runtime{};
   ConingNullParams law{};
 };
 
 class ConingLaw {
  public:
+  using SensorFrame = msg::coning::SensorFrame;
+  using ActuatorFrame = msg::coning::ActuatorFrame;
+
   explicit ConingLaw(const ConingConfig& c) : loop_(c.law, c.runtime.control_period_s()) {}
 
-  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
+  void control(const SensorFrame& in, ActuatorFrame& cmd) {
     if (!used_any_ || in.tick != last_tick_) {
-      last_ = loop_.step(in.gimbal_angle_rad[msg::kAxis2]);
+      last_ = loop_.step(in.beta_rad);
       used_any_ = true;
       last_tick_ = in.tick;
     }
-    cmd.gimbal_torque_Nm[msg::kAxis1] = 0.0;
-    cmd.gimbal_torque_Nm[msg::kAxis2] = 0.0;
-    cmd.motor_voltage_V[msg::kAxis1] = last_.voltage;
-    cmd.precession_brake = 0.0;
+    cmd.drive_voltage_V = last_.voltage;
     if (last_.saturated) cmd.status |= bit(LawStatusBit::kDriveVoltageSaturated);
   }
   void reset() {

@@ -11,8 +11,8 @@
 // follows the base's vibration (the gyro sees it and rectifies it) while the mean reading is nulled; the
 // loop's sensitivity at ν, 1 + O(k_p/ν), changes the rectified rate by O(k_p/ν)² (coning_closed_forms.hpp).
 // Drive lag τ_d: τ_d s³ + s² + k_p s + k_i is stable iff k_i τ_d < k_p (Routh).
-// Signals: reads SensorFrame gimbal_angle_rad[kAxis2] = β [rad]. Writes ActuatorFrame motor_voltage_V[kAxis1]
-// = V [V].
+// Signals (through firmware/app/coning_controller.hpp): β [rad] is the coning sensor frame's beta_rad, V [V]
+// its actuator frame's drive_voltage_V.
 // check(): finite, k_p > 0, k_i ≥ 0, scale > 0, K_v > 0, τ_d ≥ 0, voltage limit > 0; k_i τ_d ≤ k_p/2 (Routh with
 // a factor 2 of margin); k_p T ≤ 0.5 and k_p τ_d ≤ 0.5 (the sampling and the drive lag well outside the loop's
 // crossover ≈ k_p, as sampled_loop_limits.hpp asks of a rate loop).

@@ -3,16 +3,19 @@
 // the vehicle of sim/motion/earth_vehicle.hpp sampled exactly at every RK4 stage (within the segment of the
 // step's start: a step ending on a manoeuvre corner sees the left limit), integrated with the scene's
 // sub-steps. Start: (13.64) — on the geocentric vertical with its rate — plus the scene's tilt. The
-// compass has no torquer and no brake: the controller's commands, the safe state's brake included, do not
-// act (firmware/app/free_instrument_controller.hpp).
+// compass has no torquer and no brake: the controller commands nothing
+// (firmware/app/free_instrument_controller.hpp).
 //
 // State: [a1 (3) (-), a1' (3) (1/s)], inertial axes; the azimuth axis a2 = a1'/|a1'| is held per tick
 // (where a1' vanishes the book's model leaves it free). Inputs: none.
-// Outputs (SensorFrame), read against the geographic trihedron (ENU) at the tick (ideal pick-offs):
-//   carrier_angle_rad [kRoll, kPitch, kYaw] = 3-2-1 angles of the sphere's axes (a3, −a2, a1) against
-//     north-east-down: yaw = the azimuth error of a3, pitch = elevation of a3, roll = the tilt about a3;
-//   carrier_rate_rad_s = the sphere's absolute angular velocity in those axes [rad/s];
-//   gimbal_angle_rad[kAxis1], [kAxis2] = δ1 = δ2 = δ, the cases' swing; gimbal_rate_rad_s = δ' [rad/s].
+// Frames: the compass's own (tools/devices/bauersfeld_compass/bauersfeld_compass_signals.toml,
+// docs/icd/bauersfeld_compass.md): in, no command; out, read against the geographic trihedron (ENU) at the
+// tick (ideal pick-offs):
+//   sphere_roll_rad, sphere_pitch_rad, sphere_yaw_rad = 3-2-1 angles of the sphere's axes (a3, −a2, a1)
+//     against north-east-down: yaw = the azimuth error of a3, pitch = elevation of a3, roll = the tilt about a3;
+//   sphere_rate_rad_s = the sphere's absolute angular velocity in those axes [rad/s];
+//   delta_rad = δ = δ1 = δ2, the cases' swing (one value: the linkage holds them equal); delta_rate_rad_s = δ'
+//   [rad/s].
 // No random streams. Allocation-free after construction. Docs: docs/models/bauersfeld-compass.md. Oracle:
 // tests/oracle/bauersfeld_compass_test.cpp; the shipped scenes sim/scenes/bauersfeld-compass-*.toml run in
 // tests/determinism and tests/alloc.
@@ -22,8 +25,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/bauersfeld_compass_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/bauersfeld_compass.hpp"
@@ -42,6 +44,8 @@ struct BauersfeldCompassPlantParams {
 
 class BauersfeldCompassPlant {
  public:
+  using SensorFrame = msg::bauersfeld_compass::SensorFrame;
+  using ActuatorFrame = msg::bauersfeld_compass::ActuatorFrame;
   using Vehicle = motion::VehicleGenerator;
   using Model = models::BauersfeldCompass<models::VehicleSupport<Vehicle>>;
   using Dynamics = Model;
@@ -64,19 +68,17 @@ class BauersfeldCompassPlant {
   BauersfeldCompassPlant(const BauersfeldCompassPlant&) = delete;  // the model points at vehicle_
   BauersfeldCompassPlant& operator=(const BauersfeldCompassPlant&) = delete;
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
-    f.carrier_angle_rad[msg::kRoll] = reading_.roll;
-    f.carrier_angle_rad[msg::kPitch] = reading_.pitch;
-    f.carrier_angle_rad[msg::kYaw] = reading_.yaw;
-    for (int i = 0; i < 3; ++i) f.carrier_rate_rad_s[i] = body_rate_[i];
-    f.gimbal_angle_rad[msg::kAxis1] = delta_;
-    f.gimbal_angle_rad[msg::kAxis2] = delta_;
-    f.gimbal_rate_rad_s[msg::kAxis1] = delta_rate_;
-    f.gimbal_rate_rad_s[msg::kAxis2] = delta_rate_;
+    f.sphere_roll_rad = reading_.roll;
+    f.sphere_pitch_rad = reading_.pitch;
+    f.sphere_yaw_rad = reading_.yaw;
+    for (int i = 0; i < 3; ++i) f.sphere_rate_rad_s[i] = body_rate_[i];
+    f.delta_rad = delta_;
+    f.delta_rate_rad_s = delta_rate_;
   }
 
-  void actuate(const msg::ActuatorFrame&) {}
+  void actuate(const ActuatorFrame&) {}
 
   // Integrates [k, k + 1), then reads the sphere at k + 1.
   void advance(std::int64_t tick) {

@@ -4,11 +4,11 @@
 // moves by the platform's vibration generator or by the scene's [motion] (prescribed, recorded).
 // Start: at rest relative to the base (φ = φ' = 0), the gyro at β = β' = 0.
 //
-// State: [φ (rad), φ' (rad/s), β (rad), β' (rad/s)] (named accessors below). Input (ActuatorFrame):
-// motor_voltage_V[kAxis1] = V [V], clipped at ±voltage_limit; the safe state's zero voltage stops the drive.
-// Outputs (SensorFrame): gimbal_angle_rad[kAxis2] = β, gimbal_rate_rad_s[kAxis2] = β' (the gyro's pick-off,
-// ideal); carrier_angle_rad[kYaw] = φ wrapped to (−π, π] (the drive's encoder, ideal);
-// carrier_rate_rad_s = the platform's absolute angular velocity in platform axes (truth, for logs).
+// State: [φ (rad), φ' (rad/s), β (rad), β' (rad/s)] (named accessors below). Frames: the coning platform's
+// own (tools/devices/coning/coning_signals.toml, docs/icd/coning.md): in, drive_voltage_V = V [V], clipped at
+// ±voltage_limit (the safe state's zero voltage stops the drive); out, platform_azimuth_rad = φ wrapped to
+// (−π, π] (the drive's encoder, ideal), platform_rate_rad_s = the platform's absolute angular velocity in
+// platform axes (truth, for logs), beta_rad, beta_rate_rad_s = β, β' (the gyro's pick-off, ideal).
 // No random streams. Allocation-free after construction. Docs: docs/models/coning.md. Oracle:
 // tests/oracle/coning_test.cpp; the shipped scenes sim/scenes/coning-*.toml run in tests/determinism and
 // tests/alloc.
@@ -19,8 +19,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/coning_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/coning_platform.hpp"
@@ -40,6 +39,8 @@ struct ConingPlantParams {
 
 class ConingPlant {
  public:
+  using SensorFrame = msg::coning::SensorFrame;
+  using ActuatorFrame = msg::coning::ActuatorFrame;
   using Model = models::ConingPlatform;
   using Dynamics = Model;
   using State = Model::State;
@@ -55,17 +56,17 @@ class ConingPlant {
     x_ = Model::make_state(0.0, 0.0, 0.0, 0.0);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
-    f.gimbal_angle_rad[msg::kAxis2] = beta_rad();
-    f.gimbal_rate_rad_s[msg::kAxis2] = beta_rate_rad_s();
-    f.carrier_angle_rad[msg::kYaw] = std::remainder(phi_rad(), 2.0 * std::numbers::pi);
+    f.platform_azimuth_rad = std::remainder(phi_rad(), 2.0 * std::numbers::pi);
     const dynamics::Vec3 w = platform_rate_rad_s(tick_time(tick));
-    for (int i = 0; i < 3; ++i) f.carrier_rate_rad_s[i] = w[i];
+    for (int i = 0; i < 3; ++i) f.platform_rate_rad_s[i] = w[i];
+    f.beta_rad = beta_rad();
+    f.beta_rate_rad_s = beta_rate_rad_s();
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
-    model_.inputs.voltage = std::clamp(cmd.motor_voltage_V[msg::kAxis1], -p_.voltage_limit, p_.voltage_limit);
+  void actuate(const ActuatorFrame& cmd) {
+    model_.inputs.voltage = std::clamp(cmd.drive_voltage_V, -p_.voltage_limit, p_.voltage_limit);
   }
 
   // Integrates [k, k + 1).

@@ -1,12 +1,11 @@
 // Foucault's declinometer or inclinometer gyro (Magnus §13.1, (13.1)-(13.4)) on an Earth-fixed base, as a scene
 // runs it: sim/models/foucault_gyro.hpp released from rest at the scene's angle at t = 0, integrated by RK4
-// with the scene's sub-steps. The instrument has no torquer and no cage: the controller's commands, the safe
-// state's brake included, do not act.
+// with the scene's sub-steps. The instrument has no torquer and no cage: the controller commands nothing.
 //
 // State: [angle, rate] in rad, rad/s — α, α' (declinometer) or ϑ, ϑ' (inclinometer).
-// Outputs (SensorFrame), ideal pick-off on the free axis in the book's numbering: the declinometer's
-// gimbal_angle_rad[kAxis1] = α, gimbal_rate_rad_s[kAxis1] = α' (axis 1 up); the inclinometer's
-// gimbal_angle_rad[kAxis2] = ϑ, gimbal_rate_rad_s[kAxis2] = ϑ' (axis 2 east).
+// Frames: the Foucault gyros' own (tools/devices/foucault_gyro/foucault_gyro_signals.toml,
+// docs/icd/foucault_gyro.md): in, no command; out, the ideal pick-off on the free axis, angle_rad = α,
+// rate_rad_s = α' (declinometer, axis 1 up) or angle_rad = ϑ, rate_rad_s = ϑ' (inclinometer, axis 2 east).
 // No random streams. Allocation-free after construction. Docs: docs/models/foucault-gyro.md. Oracle:
 // tests/oracle/foucault_gyro_test.cpp; the shipped scenes sim/scenes/foucault-*.toml run in tests/determinism
 // and tests/alloc.
@@ -14,8 +13,7 @@
 
 #include <cstdint>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/foucault_gyro_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/foucault_gyro.hpp"
@@ -31,6 +29,8 @@ struct FoucaultGyroPlantParams {
 
 class FoucaultGyroPlant {
  public:
+  using SensorFrame = msg::foucault_gyro::SensorFrame;
+  using ActuatorFrame = msg::foucault_gyro::ActuatorFrame;
   using Model = models::FoucaultGyro;
   using Dynamics = Model;
   using State = Model::State;
@@ -41,14 +41,13 @@ class FoucaultGyroPlant {
     x_ = Model::make_state(p.angle0, 0.0);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
-    const std::size_t axis = p_.gyro.kind == models::FoucaultKind::kDeclinometer ? msg::kAxis1 : msg::kAxis2;
-    f.gimbal_angle_rad[axis] = angle_rad();
-    f.gimbal_rate_rad_s[axis] = rate_rad_s();
+    f.angle_rad = angle_rad();
+    f.rate_rad_s = rate_rad_s();
   }
 
-  void actuate(const msg::ActuatorFrame&) {}
+  void actuate(const ActuatorFrame&) {}
 
   // Integrates [k, k + 1).
   void advance(std::int64_t tick) { driver_.advance_tick(tick, x_); }

@@ -2,12 +2,13 @@
 // (12.2)-(12.20)): the vehicle attitude of sim/models/position_gyro_gimbal_error.hpp integrated by RK4 with
 // the scene's sub-steps from the prescribed rates (or a scene's [motion]: prescribed, recorded), and the gimbal
 // pick-offs read from it. The gyro has no
-// torquers and no brake: the controller's commands, the safe state's brake included, do not act.
+// torquers and no brake: the controller commands nothing.
 //
-// State: q_WF (x, y, z, w) [-] (named accessors below). Inputs: none.
-// Outputs (SensorFrame): gimbal_angle_rad[kAxis1] = α, [kAxis2] = β (ideal pick-offs, α wrapped to
-// [−π, π)); carrier_angle_rad [kRoll, kPitch, kYaw] = φ, ϑ, ψ of the prescribed motion (the vehicle's own
-// attitude reference, ψ wrapped to [−π, π)); carrier_rate_rad_s = w_WF_F (body rates).
+// State: q_WF (x, y, z, w) [-] (named accessors below). Frames: the gimbal error's own
+// (tools/devices/gimbal_error/gimbal_error_signals.toml, docs/icd/gimbal_error.md): in, no command; out,
+// roll_rad, pitch_rad, yaw_rad = φ, ϑ, ψ of the prescribed motion (the vehicle's own attitude reference,
+// wrapped to [−π, π)); body_rate_rad_s = w_WF_F (body rates); alpha_rad = α, beta_rad = β (ideal pick-offs,
+// α wrapped to [−π, π)).
 // No random streams. Allocation-free after construction. Docs: docs/models/gimbal-error.md. Oracle:
 // tests/oracle/gimbal_error_test.cpp; the shipped scene sim/scenes/gimbal-error-heading-gyro-turn.toml runs in
 // tests/determinism and tests/alloc.
@@ -18,8 +19,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/gimbal_error_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/position_gyro_gimbal_error.hpp"
@@ -41,6 +41,8 @@ struct GimbalErrorPlantParams {
 
 class GimbalErrorPlant {
  public:
+  using SensorFrame = msg::gimbal_error::SensorFrame;
+  using ActuatorFrame = msg::gimbal_error::ActuatorFrame;
   using Model = models::PositionGyroGimbalError;
   using Dynamics = Model;
   using State = Model::State;
@@ -52,22 +54,22 @@ class GimbalErrorPlant {
     angles_ = model_.gimbal_angles_of(x_);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
     const double t = time_s(tick);
-    f.gimbal_angle_rad[msg::kAxis1] = wrap_angle(angles_.alpha);
-    f.gimbal_angle_rad[msg::kAxis2] = angles_.beta;
     const std::array<double, 3> e = p_.gyro.euler(t);
-    f.carrier_angle_rad[msg::kRoll] = wrap_angle(e[0]);
-    f.carrier_angle_rad[msg::kPitch] = wrap_angle(e[1]);
-    f.carrier_angle_rad[msg::kYaw] = wrap_angle(e[2]);
+    f.roll_rad = wrap_angle(e[0]);
+    f.pitch_rad = wrap_angle(e[1]);
+    f.yaw_rad = wrap_angle(e[2]);
     const dynamics::Vec3 w = p_.gyro.rate(t);
-    f.carrier_rate_rad_s[msg::kRoll] = w.x();
-    f.carrier_rate_rad_s[msg::kPitch] = w.y();
-    f.carrier_rate_rad_s[msg::kYaw] = w.z();
+    f.body_rate_rad_s[0] = w.x();
+    f.body_rate_rad_s[1] = w.y();
+    f.body_rate_rad_s[2] = w.z();
+    f.alpha_rad = wrap_angle(angles_.alpha);
+    f.beta_rad = angles_.beta;
   }
 
-  void actuate(const msg::ActuatorFrame&) {}
+  void actuate(const ActuatorFrame&) {}
 
   // Integrates [k, k + 1).
   void advance(std::int64_t tick) {

@@ -17,9 +17,10 @@
 //
 // State: magnus [α, β (rad), α', β' (rad/s)] (z = α + iβ: small rotations of the case about F1, F2, rotor
 // axis ≈ (β, −α, 1)); rigid-body [ω_IB_B (rad/s) | q_IB (x, y, z, w)]; both are kept, the scene's model
-// advances. Inputs (ActuatorFrame): gimbal_torque_Nm[kAxis1, kAxis2] = extra torques about F1, F2 [N m] (the
-// monitor commands zero). Outputs (SensorFrame): gimbal_angle_rad[kAxis1, kAxis2] = α, β [rad],
-// gimbal_rate_rad_s[kAxis1, kAxis2] = α', β' [rad/s], rotor_speed_rad_s = H/C [rad/s].
+// advances. Frames: the gyro pendulum's own (tools/devices/gyro_pendulum/gyro_pendulum_signals.toml,
+// docs/icd/gyro_pendulum.md): in, torque_F1_Nm, torque_F2_Nm = extra torques M1, M2 about F1, F2 [N m] (the
+// monitor commands zero); out, alpha_rad, beta_rad = α, β [rad], alpha_rate_rad_s, beta_rate_rad_s = α', β'
+// [rad/s], rotor_speed_rad_s = H/C [rad/s].
 // Random streams of the scene seed (seeded_rng.hpp): 1, 2 the tilt pick-offs α, β; 3, 4 their rates.
 // Allocation-free after construction. Docs: docs/models/gyro-pendulum.md. Oracles:
 // tests/oracle/gyro_pendulum_magnus_test.cpp, schuler_pendulum_test.cpp, gyro_pendulum_cross_test.cpp (the
@@ -34,8 +35,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/gyro_pendulum_frames.hpp"
 #include "sim/dynamics/gyroscopic_exponential.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/rotor_splitting.hpp"
@@ -73,6 +73,8 @@ struct GyroPendulumPlantParams {
 
 class GyroPendulumPlant {
  public:
+  using SensorFrame = msg::gyro_pendulum::SensorFrame;
+  using ActuatorFrame = msg::gyro_pendulum::ActuatorFrame;
   using Cplx = std::complex<double>;
   using Magnus = models::GyroPendulumMagnus<motion::SampledReference>;
   using Body = models::SchulerPendulum<motion::SampledReference>;
@@ -124,18 +126,18 @@ class GyroPendulumPlant {
     observe();
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
-    f.gimbal_angle_rad[msg::kAxis1] = z_.real() + noise_[0].sample(rng_[0]);
-    f.gimbal_angle_rad[msg::kAxis2] = z_.imag() + noise_[1].sample(rng_[1]);
-    f.gimbal_rate_rad_s[msg::kAxis1] = dz_.real() + noise_[2].sample(rng_[2]);
-    f.gimbal_rate_rad_s[msg::kAxis2] = dz_.imag() + noise_[3].sample(rng_[3]);
+    f.alpha_rad = z_.real() + noise_[0].sample(rng_[0]);
+    f.beta_rad = z_.imag() + noise_[1].sample(rng_[1]);
+    f.alpha_rate_rad_s = dz_.real() + noise_[2].sample(rng_[2]);
+    f.beta_rate_rad_s = dz_.imag() + noise_[3].sample(rng_[3]);
     f.rotor_speed_rad_s = rotor_speed();
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
-    magnus_.M1 = cmd.gimbal_torque_Nm[msg::kAxis1];
-    magnus_.M2 = cmd.gimbal_torque_Nm[msg::kAxis2];
+  void actuate(const ActuatorFrame& cmd) {
+    magnus_.M1 = cmd.torque_F1_Nm;
+    magnus_.M2 = cmd.torque_F2_Nm;
     body_.torque_ext_B = dynamics::Vec3(magnus_.M1, magnus_.M2, 0.0);  // small tilt: case ≈ F axes
   }
 

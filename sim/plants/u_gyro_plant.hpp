@@ -1,12 +1,12 @@
 // The U-gyro (rate gyro with an asymmetric rotor, Magnus §15.4, (15.27)-(15.29)) on a rate table, as a scene
 // runs it: sim/models/u_gyro.hpp with the case turning at a constant rate Ω about the input axis from t = 0,
 // the spin held by its motor, integrated by RK4 with the scene's sub-steps. The gyro has no torquer and no
-// brake: the controller's commands, the safe state's brake included, do not act.
+// brake: the controller commands nothing.
 //
-// State: [β, β', γ] in rad, rad/s, rad (named accessors below). Inputs: none from the controller; the table
-// rate Ω is the scene's.
-// Outputs (SensorFrame): gimbal_angle_rad[kAxis2] = β, gimbal_rate_rad_s[kAxis2] = β' (the output pick-off,
-// ideal); rotor_speed_rad_s = γ'; carrier_rate_rad_s[kRoll] = Ω (the table, along the input axis).
+// State: [β, β', γ] in rad, rad/s, rad (named accessors below). Frames: the U-gyro's own
+// (tools/devices/u_gyro/u_gyro_signals.toml, docs/icd/u_gyro.md): in, no command (the table rate Ω is the
+// scene's); out, table_rate_rad_s = Ω (the table, along the input axis), beta_rad, beta_rate_rad_s = β, β'
+// (the output pick-off, ideal), rotor_speed_rad_s = γ'.
 // No random streams. Allocation-free after construction. Docs: docs/models/u-gyro.md. Oracle:
 // tests/oracle/u_gyro_test.cpp; the shipped scene sim/scenes/u-gyro-rate-table.toml runs in tests/determinism
 // and tests/alloc.
@@ -14,8 +14,7 @@
 
 #include <cstdint>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/u_gyro_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/u_gyro.hpp"
@@ -31,6 +30,8 @@ struct UGyroPlantParams {
 
 class UGyroPlant {
  public:
+  using SensorFrame = msg::u_gyro::SensorFrame;
+  using ActuatorFrame = msg::u_gyro::ActuatorFrame;
   using Model = models::UGyro;
   using Dynamics = Model;
   using State = Model::State;
@@ -44,15 +45,15 @@ class UGyroPlant {
     x_ = Model::make_state(0.0, 0.0, 0.0);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
-    f.gimbal_angle_rad[msg::kAxis2] = beta_rad();
-    f.gimbal_rate_rad_s[msg::kAxis2] = beta_rate_rad_s();
+    f.table_rate_rad_s = p_.table_rate;
+    f.beta_rad = beta_rad();
+    f.beta_rate_rad_s = beta_rate_rad_s();
     f.rotor_speed_rad_s = p_.gyro.spin;
-    f.carrier_rate_rad_s[msg::kRoll] = p_.table_rate;
   }
 
-  void actuate(const msg::ActuatorFrame&) {}
+  void actuate(const ActuatorFrame&) {}
 
   // Integrates [k, k + 1).
   void advance(std::int64_t tick) { driver_.advance_tick(tick, x_); }

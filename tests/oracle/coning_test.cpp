@@ -21,8 +21,6 @@
 #include <numbers>
 
 #include "firmware/control/coning_null_law.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
 #include "sim/dynamics/quaternion.hpp"
 #include "sim/oracles/coning_closed_forms.hpp"
 #include "sim/plants/coning_plant.hpp"
@@ -353,12 +351,12 @@ ClosedLoopRun run_closed_loop(const plants::ConingPlantParams& pp, const firmwar
   double V = 0.0, first = 0.0, last = 0.0, sum_cos = 0.0;
   ClosedLoopRun r;
   for (long k = 0; k < k_settle + n; ++k) {
-    msg::SensorFrame f{};
+    plants::ConingPlant::SensorFrame f{};
     plant.sense(k, f);
-    msg::ActuatorFrame cmd{};
-    cmd.motor_voltage_V[msg::kAxis1] = V;  // computed at tick k − 1
+    plants::ConingPlant::ActuatorFrame cmd{};
+    cmd.drive_voltage_V = V;  // computed at tick k − 1
     plant.actuate(cmd);
-    V = loop.step(f.gimbal_angle_rad[msg::kAxis2]).voltage;
+    V = loop.step(f.beta_rad).voltage;
     const long j = k - k_settle;
     if (j >= 0) {
       const double phi = plant.phi_rad();

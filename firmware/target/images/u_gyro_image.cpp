@@ -1,8 +1,12 @@
-// The u_gyro device's controller (firmware/app/free_instrument_controller.hpp) as a Cortex-M7 processor-in-the-loop image (pil_session.hpp).
+// The u_gyro device's controller (firmware/app/free_instrument_controller.hpp on its frames) as a Cortex-M7 processor-in-the-loop image (pil_session.hpp).
 #include "firmware/app/free_instrument_controller.hpp"
 #include "firmware/target/pil_session.hpp"
+#include "gyrostab_signals/u_gyro_frames.hpp"
 
 extern "C" [[noreturn]] void firmware_main() {
-  using Controller = gyrostab::firmware::BasicFreeInstrumentController<gyrostab::firmware::target::InstructionClock>;
-  gyrostab::firmware::target::run_pil_image<Controller>("u_gyro");
+  namespace firmware = gyrostab::firmware;
+  namespace device = gyrostab::msg::u_gyro;
+  using Controller = firmware::BasicFreeInstrumentControllerOf<device::SensorFrame, device::ActuatorFrame,
+                                                              firmware::target::InstructionClock>;
+  firmware::target::run_pil_image<Controller>("u_gyro");
 }

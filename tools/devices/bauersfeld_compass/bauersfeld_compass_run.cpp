@@ -6,14 +6,12 @@
 // beside (13.63); the tuning ratio H²/(f m s |R^M|). The CSV columns, the half-step error estimate, and the
 // scene's plant and controller for the run modes.
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <memory>
 #include <numbers>
-#include <string>
-#include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/bauersfeld_compass_outputs.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/hysteresis_crossings.hpp"
 #include "sim/oracles/bauersfeld_compass.hpp"
@@ -26,14 +24,7 @@ namespace {
 
 using Plant = plants::BauersfeldCompassPlant;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
-using Controller = firmware::BasicFreeInstrumentController<firmware::posix::MonotonicClock>;
-
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{
-      "tilt_east_rad",  "tilt_north_rad", "tilt_rad",    "azimuth_error_rad", "azimuth_book_rad", "delta_rad",
-      "delta_book_rad", "speed_m_s",      "heading_deg", "latitude_deg",      "status_bits"};
-  return c;
-}
+using Controller = BauersfeldCompassController<firmware::posix::MonotonicClock>;
 
 // An angle difference in (−π, π].
 double angle_diff(double a, double b) {
@@ -42,6 +33,10 @@ double angle_diff(double a, double b) {
 
 class BauersfeldCompassRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::bauersfeld_compass::Record;
+
   explicit BauersfeldCompassRun(const BauersfeldCompassScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -52,8 +47,8 @@ class BauersfeldCompassRun {
     measure(0);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void sense(std::int64_t tick, SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -70,21 +65,21 @@ class BauersfeldCompassRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
+  void record(Record& row) const {
     constexpr double deg = 180.0 / std::numbers::pi;
     const models::BauersfeldReading& r = plant_.reading();
     const motion::EarthVehicleSample& v = plant_.motion();
-    row[0] = r.tilt_east;
-    row[1] = r.tilt_north;
-    row[2] = r.tilt;
-    row[3] = r.azimuth;
-    row[4] = plant_.azimuth_book_rad();
-    row[5] = plant_.delta_rad();
-    row[6] = plant_.delta_book_rad();
-    row[7] = v.speed;
-    row[8] = v.heading * deg;
-    row[9] = v.latitude * deg;
-    row[10] = static_cast<double>(last_.status);
+    row.tilt_east_rad = r.tilt_east;
+    row.tilt_north_rad = r.tilt_north;
+    row.tilt_rad = r.tilt;
+    row.azimuth_error_rad = r.azimuth;
+    row.azimuth_book_rad = plant_.azimuth_book_rad();
+    row.delta_rad = plant_.delta_rad();
+    row.delta_book_rad = plant_.delta_book_rad();
+    row.speed_m_s = v.speed;
+    row.heading_deg = v.heading * deg;
+    row.latitude_deg = v.latitude * deg;
+    row.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -151,7 +146,7 @@ class BauersfeldCompassRun {
   Plant plant_;
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
   analysis::HysteresisCrossings east_, north_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   double tilt_max_{0.0}, tilt_max_t_{0.0}, azimuth_max_{0.0}, azimuth_dev_{0.0};
   double delta_min_{1e300}, delta_max_{0.0}, delta_dev_{0.0}, sin_delta_max_{0.0};
   std::int64_t ticks_{0};
@@ -161,7 +156,6 @@ struct BauersfeldCompassTraits {
   using Scene = BauersfeldCompassScene;
   using Binding = BauersfeldCompassRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
 };
 
 }  // namespace

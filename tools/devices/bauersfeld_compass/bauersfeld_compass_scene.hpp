@@ -14,10 +14,16 @@
 
 namespace gyrostab::tools {
 
+// The compass's controller: the free instrument's (no law) on the compass's frames.
+template <firmware::MonotonicClock Clock = firmware::NullClock>
+using BauersfeldCompassController =
+    firmware::BasicFreeInstrumentControllerOf<msg::bauersfeld_compass::SensorFrame,
+                                              msg::bauersfeld_compass::ActuatorFrame, Clock>;
+
 struct BauersfeldCompassScene {
   LoopConfig loop;
   plants::BauersfeldCompassPlantParams plant;
-  firmware::FreeInstrumentConfig controller;
+  firmware::FreeInstrumentConfigOf<msg::bauersfeld_compass::SensorFrame> controller;
   double tuning_ratio{1.0};       // [compass] H²/(f m s |R^M|) that sets f when f is absent
   bool tuned{false};              // [compass] refuse unless H² = f m s |R^M| (13.60)
   double period_threshold{1e-6};  // [report] hysteresis of the tilt's zero crossings [rad]

@@ -20,7 +20,7 @@ namespace {
 
 using S = BauersfeldCompassScene;
 using F = schema::Fields<S>;
-using Controller = firmware::BasicFreeInstrumentController<firmware::posix::MonotonicClock>;
+using Controller = BauersfeldCompassController<firmware::posix::MonotonicClock>;
 
 // Tolerance of `tuned = true` on H²/(f m s |R^M|) − 1: a hand-computed f with ten significant digits.
 constexpr double kTunedTolerance = 1e-9;

@@ -10,10 +10,9 @@
 #include <complex>
 #include <memory>
 #include <numbers>
-#include <string>
-#include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/coning_outputs.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/oracles/coning_closed_forms.hpp"
 #include "tools/devices/coning/coning_scene.hpp"
@@ -26,12 +25,6 @@ namespace {
 using Plant = plants::ConingPlant;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
 using Controller = firmware::BasicConingController<firmware::posix::MonotonicClock>;
-
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"phi_rad",   "phi_rate_rad_s", "platform_rate_rad_s", "beta_rad",
-                                          "reading",   "drive_voltage_V", "status_bits"};
-  return c;
-}
 
 // Sums over one block of samples (a vibration period in ticks).
 struct BlockSums {
@@ -55,6 +48,10 @@ Cone cone_of(const motion::SceneBaseMotion& b) {
 
 class ConingRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::coning::Record;
+
   explicit ConingRun(const ConingScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -65,8 +62,8 @@ class ConingRun {
         circuit_ticks_(cone_.applies ? std::llround(cone_.period_s / s.loop.tick_s()) : 0),
         window_(std::min(settle_tick_, s.loop.ticks() / 2), per_) {}
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void sense(std::int64_t tick, SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -103,14 +100,14 @@ class ConingRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
-    row[0] = plant_.phi_rad();
-    row[1] = plant_.phi_rate_rad_s();
-    row[2] = plant_.platform_rate_rad_s(plant_.tick_time(ticks_))[2];
-    row[3] = plant_.beta_rad();
-    row[4] = plant_.indicated();
-    row[5] = plant_.held_inputs().voltage;
-    row[6] = static_cast<double>(last_.status);
+  void record(Record& r) const {
+    r.phi_rad = plant_.phi_rad();
+    r.phi_rate_rad_s = plant_.phi_rate_rad_s();
+    r.platform_rate_rad_s = plant_.platform_rate_rad_s(plant_.tick_time(ticks_))[2];
+    r.beta_rad = plant_.beta_rad();
+    r.reading = plant_.indicated();
+    r.drive_voltage_V = plant_.held_inputs().voltage;
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -211,7 +208,7 @@ class ConingRun {
   Plant plant_;
   std::int64_t settle_tick_;
   std::int64_t per_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   BlockSums block_{}, first_{}, last_block_{};
   std::int64_t in_block_{0}, blocks_{0};
   double run_cos_{0.0}, run_rate_{0.0}, run_reading_{0.0};     // over all samples so far
@@ -228,15 +225,12 @@ struct ConingTraits {
   using Scene = ConingScene;
   using Binding = ConingRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   // What moves the base (the vibration generator or the scene's [motion]): `gyrostab motion-record` writes it.
   static const motion::SceneBaseMotion* base_motion(const Scene& s) { return &s.plant.base; }
-  // The drive's supply on axis 1 (the only command); no torques.
+  // The drive's supply (the only command).
   static hil::ActuatorLimits actuator_limits(const Scene& s) {
-    msg::ActuatorFrame l = hil::ActuatorLimits::unlimited<msg::ActuatorFrame>();
-    l.gimbal_torque_Nm[0] = l.gimbal_torque_Nm[1] = 0.0;
-    l.motor_voltage_V[0] = s.plant.voltage_limit;
-    l.motor_voltage_V[1] = 0.0;
+    msg::coning::ActuatorFrame l = hil::ActuatorLimits::unlimited<msg::coning::ActuatorFrame>();
+    l.drive_voltage_V = s.plant.voltage_limit;
     return hil::ActuatorLimits::of(l);
   }
   static nlohmann::json limits(const Scene& s) { return {{"drive_voltage_limit_V", s.plant.voltage_limit}}; }

@@ -7,10 +7,9 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
-#include <string>
-#include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/foucault_gyro_outputs.hpp"
 #include "sim/analysis/extrema_meter.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "tools/devices/device_scene_of.hpp"
@@ -22,21 +21,19 @@ namespace {
 
 using Plant = plants::FoucaultGyroPlant;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
-using Controller = firmware::BasicFreeInstrumentController<firmware::posix::MonotonicClock>;
+using Controller = FoucaultGyroController<firmware::posix::MonotonicClock>;
 constexpr double kDeg = std::numbers::pi / 180.0;
 // An extremum counts once the offset has moved back by this much: far above the angle's round-off (1e-16 rad)
 // so that the parabola through three samples still places the extremum (its curvature over a tick is
 // a ω0² h² ≈ 1e-7 a for the scenes), far below any amplitude the figures use.
 constexpr double kHysteresisRad = 1e-6;
 
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"angle_rad",   "offset_rad",  "rate_rad_s", "directive_torque_Nm",
-                                          "envelope_rad", "status_bits"};
-  return c;
-}
-
 class FoucaultGyroRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::foucault_gyro::Record;
+
   explicit FoucaultGyroRun(const FoucaultGyroScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -45,8 +42,8 @@ class FoucaultGyroRun {
         extrema_(kHysteresisRad),
         window_(0, std::min<std::int64_t>(1000, std::max<std::int64_t>(1, s.loop.ticks()))) {}
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void sense(std::int64_t tick, SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -66,13 +63,13 @@ class FoucaultGyroRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
-    row[0] = plant_.angle_rad();
-    row[1] = plant_.offset_rad();
-    row[2] = plant_.rate_rad_s();
-    row[3] = plant_.directive_torque_Nm();
-    row[4] = envelope(static_cast<double>(ticks_) * s_.loop.tick_s());
-    row[5] = static_cast<double>(last_.status);
+  void record(Record& r) const {
+    r.angle_rad = plant_.angle_rad();
+    r.offset_rad = plant_.offset_rad();
+    r.rate_rad_s = plant_.rate_rad_s();
+    r.directive_torque_Nm = plant_.directive_torque_Nm();
+    r.envelope_rad = envelope(static_cast<double>(ticks_) * s_.loop.tick_s());
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -137,7 +134,7 @@ class FoucaultGyroRun {
   models::FoucaultLinear linear_;
   double offset0_;
   analysis::ExtremaMeter<96> extrema_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   double last_outside_s_{-1.0};
   std::int64_t ticks_{0};
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
@@ -147,7 +144,6 @@ struct FoucaultGyroTraits {
   using Scene = FoucaultGyroScene;
   using Binding = FoucaultGyroRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
 };
 
 }  // namespace

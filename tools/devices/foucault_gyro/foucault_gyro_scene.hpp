@@ -17,10 +17,15 @@ namespace gyrostab::tools {
 // pole (13.2), and its period grows as 1/sqrt(cosφ) (13.6) — 3.4 times the equator's at 85°.
 inline constexpr double kDeclinometerLatitudeLimitDeg = 85.0;
 
+// The Foucault gyros' controller: the free instrument's (no law) on their frames.
+template <firmware::MonotonicClock Clock = firmware::NullClock>
+using FoucaultGyroController = firmware::BasicFreeInstrumentControllerOf<msg::foucault_gyro::SensorFrame,
+                                                                         msg::foucault_gyro::ActuatorFrame, Clock>;
+
 struct FoucaultGyroScene {
   LoopConfig loop;
   plants::FoucaultGyroPlantParams plant;
-  firmware::FreeInstrumentConfig controller;
+  firmware::FreeInstrumentConfigOf<msg::foucault_gyro::SensorFrame> controller;
   double small_amplitude{0.008726646259971648};  // [report] period and decay from extrema below this offset [rad]
   double settle_tolerance{4.84813681109536e-05};  // [report] settled once |offset| stays below this [rad]
 };

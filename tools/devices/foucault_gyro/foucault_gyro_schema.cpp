@@ -17,7 +17,7 @@ namespace {
 
 using S = FoucaultGyroScene;
 using F = schema::Fields<S>;
-using Controller = firmware::BasicFreeInstrumentController<firmware::posix::MonotonicClock>;
+using Controller = FoucaultGyroController<firmware::posix::MonotonicClock>;
 using models::FoucaultKind;
 
 constexpr std::string_view kKinds[] = {"declinometer", "inclinometer"};

@@ -9,9 +9,9 @@
 #include <memory>
 #include <numbers>
 #include <string>
-#include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/gimbal_error_outputs.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/oracles/gimbal_error_closed_forms.hpp"
 #include "tools/devices/device_scene_of.hpp"
@@ -23,15 +23,9 @@ namespace {
 
 using Plant = plants::GimbalErrorPlant;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
-using Controller = firmware::BasicFreeInstrumentController<firmware::posix::MonotonicClock>;
+using Controller = GimbalErrorController<firmware::posix::MonotonicClock>;
 
 constexpr const char* kAngleNames[] = {"roll", "pitch", "yaw"};  // by vehicle axis 1^F, 2^F, 3^F
-
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"alpha_rad",     "beta_rad", "alpha_error_rad", "beta_error_rad",
-                                          "yaw_rad",       "pitch_rad", "roll_rad",        "status_bits"};
-  return c;
-}
 
 // The largest |error| and the vehicle's attitude where it first occurred.
 struct ErrorPeak {
@@ -62,6 +56,10 @@ double heading_from_nearest_axis(double psi) {
 
 class GimbalErrorRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::gimbal_error::Record;
+
   explicit GimbalErrorRun(const GimbalErrorScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -72,8 +70,8 @@ class GimbalErrorRun {
     measure(0);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void sense(std::int64_t tick, SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -90,15 +88,15 @@ class GimbalErrorRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
-    row[0] = plant_.alpha_rad();
-    row[1] = plant_.beta_rad();
-    row[2] = alpha_error_;
-    row[3] = beta_error_;
-    row[4] = euler_[2];
-    row[5] = euler_[1];
-    row[6] = euler_[0];
-    row[7] = static_cast<double>(last_.status);
+  void record(Record& r) const {
+    r.alpha_rad = plant_.alpha_rad();
+    r.beta_rad = plant_.beta_rad();
+    r.alpha_error_rad = alpha_error_;
+    r.beta_error_rad = beta_error_;
+    r.yaw_rad = euler_[2];
+    r.pitch_rad = euler_[1];
+    r.roll_rad = euler_[0];
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -166,7 +164,7 @@ class GimbalErrorRun {
   Plant plant_;
   int alpha_axis_, beta_axis_;
   bool level_turn_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   std::array<double, 3> euler_{};  // φ, ϑ, ψ at the current state [rad]
   double alpha_error_{0.0}, beta_error_{0.0};
   ErrorPeak alpha_peak_{}, beta_peak_{};
@@ -180,7 +178,6 @@ struct GimbalErrorTraits {
   using Scene = GimbalErrorScene;
   using Binding = GimbalErrorRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   // What moves the vehicle (the [yaw], [pitch], [roll] generator or the scene's [motion]), for motion-record.
   static const motion::SceneBaseMotion* base_motion(const Scene& s) { return &s.plant.gyro.motion; }
 };

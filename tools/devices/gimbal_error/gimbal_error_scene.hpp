@@ -23,11 +23,16 @@ struct VehicleAngleKeys {
   double phase{0.0};      // [rad]
 };
 
+// The gyro's controller: the free instrument's (no law) on the gimbal error's frames.
+template <firmware::MonotonicClock Clock = firmware::NullClock>
+using GimbalErrorController = firmware::BasicFreeInstrumentControllerOf<msg::gimbal_error::SensorFrame,
+                                                                        msg::gimbal_error::ActuatorFrame, Clock>;
+
 struct GimbalErrorScene {
   LoopConfig loop;
   plants::GimbalErrorPlantParams plant;  // plant.gyro.vehicle is built from yaw, pitch, roll
   VehicleAngleKeys yaw, pitch, roll;     // ψ, ϑ, φ of (12.2)
-  firmware::FreeInstrumentConfig controller;
+  firmware::FreeInstrumentConfigOf<msg::gimbal_error::SensorFrame> controller;
 };
 
 // Reads and checks the scene (the problems in the reader; nullptr when refused).

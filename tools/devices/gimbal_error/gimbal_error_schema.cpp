@@ -16,7 +16,7 @@ namespace {
 
 using S = GimbalErrorScene;
 using F = schema::Fields<S>;
-using Controller = firmware::BasicFreeInstrumentController<firmware::posix::MonotonicClock>;
+using Controller = GimbalErrorController<firmware::posix::MonotonicClock>;
 
 #define GS_VEHICLE_ANGLE(sec, m, symbol, about)                                                              \
   F::number(sec, "angle_deg", "deg", Range::closed(-360.0, 360.0), symbol " at t = 0 (" about ")",           \

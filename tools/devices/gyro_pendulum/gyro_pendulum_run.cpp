@@ -13,10 +13,9 @@
 #include <complex>
 #include <memory>
 #include <numbers>
-#include <string>
-#include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/gyro_pendulum_outputs.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/hysteresis_crossings.hpp"
 #include "sim/models/gyro_pendulum_quaternion.hpp"
@@ -33,15 +32,12 @@ using Cplx = Plant::Cplx;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
 using Controller = firmware::BasicGyroPendulumController<firmware::posix::MonotonicClock>;
 
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{
-      "alpha_rad",           "beta_rad",  "tilt_rad",    "alpha_book_rad", "beta_book_rad",
-      "precession_mode_rad", "speed_m_s", "heading_deg", "latitude_deg",   "status_bits"};
-  return c;
-}
-
 class GyroPendulumRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::gyro_pendulum::Record;
+
   explicit GyroPendulumRun(const GyroPendulumScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -55,8 +51,8 @@ class GyroPendulumRun {
     mode_start_ = std::abs(p_);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void sense(std::int64_t tick, SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -75,18 +71,18 @@ class GyroPendulumRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
+  void record(Record& r) const {
     constexpr double deg = 180.0 / std::numbers::pi;
-    row[0] = plant_.z().real();
-    row[1] = plant_.z().imag();
-    row[2] = plant_.tilt_rad();
-    row[3] = zb_.real();
-    row[4] = zb_.imag();
-    row[5] = std::abs(p_);
-    row[6] = plant_.speed_m_s();
-    row[7] = plant_.heading_rad() * deg;
-    row[8] = plant_.latitude_rad() * deg;
-    row[9] = static_cast<double>(last_.status);
+    r.alpha_rad = plant_.z().real();
+    r.beta_rad = plant_.z().imag();
+    r.tilt_rad = plant_.tilt_rad();
+    r.alpha_book_rad = zb_.real();
+    r.beta_book_rad = zb_.imag();
+    r.precession_mode_rad = std::abs(p_);
+    r.speed_m_s = plant_.speed_m_s();
+    r.heading_deg = plant_.heading_rad() * deg;
+    r.latitude_deg = plant_.latitude_rad() * deg;
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -204,7 +200,7 @@ class GyroPendulumRun {
   oracles::GyroPendulumRoots roots_;
   analysis::HalfStepWindow<Plant::Magnus, Plant::MagnusInputs> window_;
   analysis::HysteresisCrossings crossings_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   Cplx zb_{0.0, 0.0}, p_{0.0, 0.0};
   double vertical_error_max_{0.0}, book_error_max_{0.0}, deviation_max_{0.0};
   double mode_start_{0.0}, mode_min_{1e300}, mode_max_{0.0}, ripple_max_{0.0};
@@ -217,7 +213,6 @@ struct GyroPendulumTraits {
   using Scene = GyroPendulumScene;
   using Binding = GyroPendulumRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
 };
 
 }  // namespace

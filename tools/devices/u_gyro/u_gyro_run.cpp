@@ -10,10 +10,9 @@
 #include <complex>
 #include <memory>
 #include <numbers>
-#include <string>
-#include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/u_gyro_outputs.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/harmonic_fit.hpp"
 #include "sim/oracles/u_gyro_output.hpp"
@@ -26,16 +25,14 @@ namespace {
 
 using Plant = plants::UGyroPlant;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
-using Controller = firmware::BasicFreeInstrumentController<firmware::posix::MonotonicClock>;
-
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"beta_rad", "beta_rate_rad_s", "gyro_torque_Nm",
-                                          "book_torque_Nm", "status_bits"};
-  return c;
-}
+using Controller = UGyroController<firmware::posix::MonotonicClock>;
 
 class UGyroRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::u_gyro::Record;
+
   explicit UGyroRun(const UGyroScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -43,8 +40,8 @@ class UGyroRun {
         window_(std::min(settle_tick_, s.loop.ticks() / 2),
                 std::max<std::int64_t>(1, static_cast<std::int64_t>(0.05 / s.loop.tick_s()))) {}
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void sense(std::int64_t tick, SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -73,12 +70,12 @@ class UGyroRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
-    row[0] = plant_.beta_rad();
-    row[1] = plant_.beta_rate_rad_s();
-    row[2] = plant_.gyro_torque_Nm();
-    row[3] = oracles::u_gyro_output_torque(s_.plant.gyro, s_.plant.table_rate, plant_.spin_angle_rad());
-    row[4] = static_cast<double>(last_.status);
+  void record(Record& r) const {
+    r.beta_rad = plant_.beta_rad();
+    r.beta_rate_rad_s = plant_.beta_rate_rad_s();
+    r.gyro_torque_Nm = plant_.gyro_torque_Nm();
+    r.book_torque_Nm = oracles::u_gyro_output_torque(s_.plant.gyro, s_.plant.table_rate, plant_.spin_angle_rad());
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -134,7 +131,7 @@ class UGyroRun {
   const UGyroScene& s_;
   Plant plant_;
   std::int64_t settle_tick_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   bool started_{false};
   double gamma_start_{0.0};
   std::int64_t periods_{0};
@@ -148,7 +145,6 @@ struct UGyroTraits {
   using Scene = UGyroScene;
   using Binding = UGyroRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
 };
 
 }  // namespace

@@ -13,10 +13,15 @@
 
 namespace gyrostab::tools {
 
+// The U-gyro's controller: the free instrument's (no law) on the U-gyro's frames.
+template <firmware::MonotonicClock Clock = firmware::NullClock>
+using UGyroController = firmware::BasicFreeInstrumentControllerOf<msg::u_gyro::SensorFrame,
+                                                                  msg::u_gyro::ActuatorFrame, Clock>;
+
 struct UGyroScene {
   LoopConfig loop;
   plants::UGyroPlantParams plant;
-  firmware::FreeInstrumentConfig controller;
+  firmware::FreeInstrumentConfigOf<msg::u_gyro::SensorFrame> controller;
   double settle_s{0.5};  // [report] the output's harmonics are measured after this time [s]
 };
 

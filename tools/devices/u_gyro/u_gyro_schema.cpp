@@ -16,7 +16,7 @@ namespace {
 
 using S = UGyroScene;
 using F = schema::Fields<S>;
-using Controller = firmware::BasicFreeInstrumentController<firmware::posix::MonotonicClock>;
+using Controller = UGyroController<firmware::posix::MonotonicClock>;
 
 constexpr schema::Field<S> kFields[] = {
     F::number("rotor", "AR", "kg m²", Range::positive(), "rotor inertia about its principal axis x",
