@@ -165,21 +165,36 @@ struct Monorail {
   }
 };
 
-struct ServoGyro : LegacyFrames {
+struct ServoGyro {
   using Controller = ServoGyroController;
+  using SensorFrame = msg::servo_gyro::SensorFrame;
+  using ActuatorFrame = msg::servo_gyro::ActuatorFrame;
   static Controller::Config config() {
     Controller::Config c{};
     c.reference = 0.02;  // Ω [rad/s], small so the first command is not saturated
     return c;
   }
+  static SensorFrame frame(std::uint64_t k) {
+    const double x = static_cast<double>(k % 100) * 1e-5;
+    SensorFrame f{};
+    set_header(f, k);
+    f.alpha_rad = 0.01 + x;
+    f.drive_angle_rad = 0.03 - x;
+    f.alpha_rate_rad_s = 0.02 + x;
+    f.drive_rate_rad_s = -0.01 + x;
+    return f;
+  }
+  static double torque(const ActuatorFrame& c) { return c.motor_torque_Nm; }
+  static void poison(SensorFrame& f5, SensorFrame& f6) {
+    f5.drive_rate_rad_s = std::numeric_limits<double>::quiet_NaN();
+    f6.alpha_rate_rad_s = std::numeric_limits<double>::quiet_NaN();
+  }
   static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
     const ServoGyroParams p{};
-    const double beta = f.gimbal_angle_rad[msg::kAxis2];
+    const double beta = f.drive_angle_rad;
     // First run: k_p (Ω − β') − H cosβ α' (14.43), integral still 0.
-    const double M2 = p.rate_kp * (0.02 - f.gimbal_rate_rad_s[msg::kAxis2]) -
-                      p.H * std::cos(beta) * f.gimbal_rate_rad_s[msg::kAxis1];
-    EXPECT_NEAR(c.gimbal_torque_Nm[msg::kAxis2], M2, 1e-12 * std::abs(M2));
-    EXPECT_EQ(c.gimbal_torque_Nm[msg::kAxis1], 0.0);
+    const double M2 = p.rate_kp * (0.02 - f.drive_rate_rad_s) - p.H * std::cos(beta) * f.alpha_rate_rad_s;
+    EXPECT_NEAR(c.motor_torque_Nm, M2, 1e-12 * std::abs(M2));
     EXPECT_EQ(c.precession_brake, 0.0);
   }
 };
@@ -472,15 +487,14 @@ TEST(ControllerRuntime, ServoGyroTorqueDemandBecomesARateReference) {
   cfg.reference_kind = ServoGyroReference::kAxis1Torque;
   cfg.reference = -0.01;
   ServoGyroController ctl(cfg);
-  const SensorFrame f = good_frame(0);
-  ActuatorFrame out{};
+  const ServoGyro::SensorFrame f = ServoGyro::frame(0);
+  ServoGyro::ActuatorFrame out{};
   ctl.step(0, &f, out);
   const ServoGyroParams p{};
-  const double beta = f.gimbal_angle_rad[msg::kAxis2];
+  const double beta = f.drive_angle_rad;
   const double omega = 0.01 / (p.H * std::cos(beta));
-  const double M2 = p.rate_kp * (omega - f.gimbal_rate_rad_s[msg::kAxis2]) -
-                    p.H * std::cos(beta) * f.gimbal_rate_rad_s[msg::kAxis1];
-  EXPECT_NEAR(out.gimbal_torque_Nm[msg::kAxis2], M2, 1e-12);
+  const double M2 = p.rate_kp * (omega - f.drive_rate_rad_s) - p.H * std::cos(beta) * f.alpha_rate_rad_s;
+  EXPECT_NEAR(out.motor_torque_Nm, M2, 1e-12);
 }
 
 }  // namespace controllers_test
