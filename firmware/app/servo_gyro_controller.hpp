@@ -6,13 +6,12 @@
 // the book's vibrator drive, default Ω = 10 rad/s = sqrt(c1/A) of the plant's default oscillator) or a
 // torque demand on axis 1 (kAxis1Torque: Ω = −M1/(H cosβ) each control tick, |cosβ| floored near gimbal
 // lock, kGimbalLockGuard); set_reference() changes the value at run time.
-// Reads (SensorFrame): gimbal_angle_rad[kAxis2] = β [rad], gimbal_rate_rad_s[kAxis2] = β' [rad/s],
-// gimbal_rate_rad_s[kAxis1] = α' [rad/s]; with the drive enabled also motor_current_A[kAxis2] [A].
-// Writes (ActuatorFrame): gimbal_torque_Nm[kAxis2] = M2 [N m]; gimbal_torque_Nm[kAxis1] = 0;
-// precession_brake = 0 (1 only in the safe state); motor_voltage_V[kAxis2] from the current loop when the
-// drive is enabled; status bits kRateLoopSaturated, kGimbalLockGuard + the runtime's.
-// Rates: the rate loop every control_divisor base ticks with dt = T_c (its PI integrates over T_c); the
-// drive every drive_divisor ticks.
+// Frames: the servo gyro's own (tools/devices/servo_gyro/servo_gyro_signals.toml, docs/icd/servo_gyro.md).
+// Reads drive_angle_rad = β [rad], drive_rate_rad_s = β' [rad/s], alpha_rate_rad_s = α' [rad/s].
+// Writes motor_torque_Nm = M2 [N m]; precession_brake = 0 (the axis-2 brake: 1 only in the safe state);
+// status bits kRateLoopSaturated, kGimbalLockGuard + the runtime's.
+// Rates: the rate loop every control_divisor base ticks with dt = T_c (its PI integrates over T_c). The axis-2
+// motor is torque-driven (no current loop: the servo gyro has no winding-current sensor).
 // Docs: docs/models/servo-gyro.md#firmware-law
 #pragma once
 
@@ -23,8 +22,7 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/law_status_bits.hpp"
 #include "firmware/control/servo_gyro_law.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/servo_gyro_frames.hpp"
 
 namespace gyrostab::firmware {
 
@@ -34,8 +32,7 @@ enum class ServoGyroReference : std::uint8_t {
 };
 
 struct ServoGyroConfig {
-  RuntimeConfig runtime{};
-  DriveConfig drive{};  // current loop on axis 2 (optional)
+  RuntimeConfigOf<msg::servo_gyro::SensorFrame> runtime{};
   ServoGyroParams law{};
   ServoGyroReference reference_kind{ServoGyroReference::kRate};
   double reference{10.0};  // Ω [rad/s] or M1 [N m], per reference_kind
@@ -43,7 +40,8 @@ struct ServoGyroConfig {
 
 class ServoGyroLaw {
  public:
-  static constexpr std::uint32_t kDriveAxes = 1u << msg::kAxis2;
+  using SensorFrame = msg::servo_gyro::SensorFrame;
+  using ActuatorFrame = msg::servo_gyro::ActuatorFrame;
 
   explicit ServoGyroLaw(const ServoGyroConfig& c)
       : params_(c.law),
@@ -51,8 +49,8 @@ class ServoGyroLaw {
         kind_(c.reference_kind),
         reference_(c.reference) {}
 
-  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
-    const double beta = in.gimbal_angle_rad[msg::kAxis2];
+  void control(const SensorFrame& in, ActuatorFrame& cmd) {
+    const double beta = in.drive_angle_rad;
     double rate = reference_;
     if (kind_ == ServoGyroReference::kAxis1Torque) {
       const ServoGyroRate r = servo_gyro_rate_for_torque(params_, reference_, beta);
@@ -60,9 +58,8 @@ class ServoGyroLaw {
       if (r.limited) cmd.status |= bit(LawStatusBit::kGimbalLockGuard);
     }
     const ServoGyroOutput o =
-        loop_.step({rate, beta, in.gimbal_rate_rad_s[msg::kAxis2], in.gimbal_rate_rad_s[msg::kAxis1]});
-    cmd.gimbal_torque_Nm[msg::kAxis1] = 0.0;
-    cmd.gimbal_torque_Nm[msg::kAxis2] = o.torque_Nm;
+        loop_.step({rate, beta, in.drive_rate_rad_s, in.alpha_rate_rad_s});
+    cmd.motor_torque_Nm = o.torque_Nm;
     cmd.precession_brake = 0.0;
     if (o.saturated) cmd.status |= bit(LawStatusBit::kRateLoopSaturated);
   }
@@ -86,14 +83,14 @@ class BasicServoGyroController : public ControllerRuntime<ServoGyroLaw, Clock> {
   using Config = ServoGyroConfig;
 
   static ConfigCheck check(const Config& c) {
-    const ConfigCheck r = check_runtime(c.runtime, c.drive, ServoGyroLaw::kDriveAxes);
+    const ConfigCheck r = check_runtime(c.runtime, DriveConfig{}, 0u);
     if (!r.ok) return r;
     if (!std::isfinite(c.reference)) return ConfigCheck::refused("servo gyro: reference must be finite");
     return check_servo_gyro(c.law, c.runtime.control_period_s());
   }
 
   explicit BasicServoGyroController(const Config& c, Clock clock = Clock{})
-      : Base(c.runtime, c.drive, ServoGyroLaw::kDriveAxes, ServoGyroLaw(c), check(c), clock) {}
+      : Base(c.runtime, DriveConfig{}, 0u, ServoGyroLaw(c), check(c), clock) {}
 
   // New reference (Ω [rad/s] or M1 [N m], per Config::reference_kind), used from the next control run.
   // A non-finite value is ignored.

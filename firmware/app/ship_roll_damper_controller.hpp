@@ -5,15 +5,16 @@
 // Laws: firmware/control/precession_brake.hpp (kPassiveBrake: M2 = −d2 β') and
 // firmware/control/active_precession_control.hpp (kActive: roll-rate feedback, soft limit, end-stop
 // braking, saturation; sign and stability argument there).
-// Reads (SensorFrame): carrier_rate_rad_s[kRoll] = φ' [rad/s] (active only), gimbal_angle_rad[kAxis2] = β
-// [rad] (active only), gimbal_rate_rad_s[kAxis2] = β' [rad/s]; with the drive enabled also
-// motor_current_A[kAxis2] [A].
-// Writes (ActuatorFrame): gimbal_torque_Nm[kAxis2] = M2 [N m] (the plant's d2 must be 0: the brake is this
-// torque); gimbal_torque_Nm[kAxis1] = 0; precession_brake = 0 (released; 1 only in the safe state);
-// motor_voltage_V[kAxis2] [V] from the current loop when the drive is enabled, else 0; status bits
-// kAxis2TorqueSaturated, kBeyondSoftLimit, kEndStopBraking (law_status_bits.hpp) + the runtime's.
+// Frames: the ship roll damper's own (tools/devices/ship_roll_damper/ship_roll_damper_signals.toml,
+// docs/icd/ship_roll_damper.md).
+// Reads roll_rate_rad_s = φ' [rad/s] (active only), precession_angle_rad = β [rad] (active only),
+// precession_rate_rad_s = β' [rad/s].
+// Writes precession_torque_Nm = M2 [N m] (the plant's d2 must be 0: the brake is this torque);
+// precession_brake = 0 (released; 1 only in the safe state); status bits kAxis2TorqueSaturated,
+// kBeyondSoftLimit, kEndStopBraking (law_status_bits.hpp) + the runtime's.
 // Rates: the law runs every control_divisor base ticks with dt = T_c (the laws here are static in time
-// except the braking direction); the drive on axis 2 every drive_divisor ticks.
+// except the braking direction). The precession motor is torque-driven (no current loop: the ship's gyro has
+// no winding-current sensor).
 // Docs: docs/models/ship-roll-damper.md#firmware-laws
 #pragma once
 
@@ -24,8 +25,7 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/law_status_bits.hpp"
 #include "firmware/control/precession_brake.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/ship_roll_damper_frames.hpp"
 
 namespace gyrostab::firmware {
 
@@ -35,8 +35,7 @@ enum class ShipRollDamperMode : std::uint8_t {
 };
 
 struct ShipRollDamperConfig {
-  RuntimeConfig runtime{};
-  DriveConfig drive{};  // current loop on axis 2 (optional)
+  RuntimeConfigOf<msg::ship_roll_damper::SensorFrame> runtime{};
   ShipRollDamperMode mode{ShipRollDamperMode::kActive};
   PrecessionBrakeParams brake{};    // kPassiveBrake
   ActivePrecessionParams active{};  // kActive
@@ -45,24 +44,23 @@ struct ShipRollDamperConfig {
 // The law adapter: contract fields ↔ the ship-damper laws.
 class ShipRollDamperLaw {
  public:
-  static constexpr std::uint32_t kDriveAxes = 1u << msg::kAxis2;
+  using SensorFrame = msg::ship_roll_damper::SensorFrame;
+  using ActuatorFrame = msg::ship_roll_damper::ActuatorFrame;
 
   explicit ShipRollDamperLaw(const ShipRollDamperConfig& c)
       : mode_(c.mode), brake_(c.brake), active_(c.active) {}
 
-  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
-    cmd.gimbal_torque_Nm[msg::kAxis1] = 0.0;
+  void control(const SensorFrame& in, ActuatorFrame& cmd) {
     cmd.precession_brake = 0.0;
     if (mode_ == ShipRollDamperMode::kPassiveBrake) {
-      const Clipped m = precession_brake_torque(brake_, in.gimbal_rate_rad_s[msg::kAxis2]);
-      cmd.gimbal_torque_Nm[msg::kAxis2] = m.value;
+      const Clipped m = precession_brake_torque(brake_, in.precession_rate_rad_s);
+      cmd.precession_torque_Nm = m.value;
       if (m.clipped) cmd.status |= bit(LawStatusBit::kAxis2TorqueSaturated);
       return;
     }
-    const ActivePrecessionInputs x{in.carrier_rate_rad_s[msg::kRoll], in.gimbal_angle_rad[msg::kAxis2],
-                                   in.gimbal_rate_rad_s[msg::kAxis2]};
+    const ActivePrecessionInputs x{in.roll_rate_rad_s, in.precession_angle_rad, in.precession_rate_rad_s};
     const ActivePrecessionOutput o = active_precession_step(active_, state_, x);
-    cmd.gimbal_torque_Nm[msg::kAxis2] = o.torque_Nm;
+    cmd.precession_torque_Nm = o.torque_Nm;
     if (o.saturated) cmd.status |= bit(LawStatusBit::kAxis2TorqueSaturated);
     if (o.beyond_soft_limit) cmd.status |= bit(LawStatusBit::kBeyondSoftLimit);
     if (o.braking) cmd.status |= bit(LawStatusBit::kEndStopBraking);
@@ -84,9 +82,9 @@ class BasicShipRollDamperController : public ControllerRuntime<ShipRollDamperLaw
  public:
   using Config = ShipRollDamperConfig;
 
-  // Runtime (tick, divisors, drive), then the law of the configured mode at the control period. O(1).
+  // Runtime (tick, divisors), then the law of the configured mode at the control period. O(1).
   static ConfigCheck check(const Config& c) {
-    const ConfigCheck r = check_runtime(c.runtime, c.drive, ShipRollDamperLaw::kDriveAxes);
+    const ConfigCheck r = check_runtime(c.runtime, DriveConfig{}, 0u);
     if (!r.ok) return r;
     const double T = c.runtime.control_period_s();
     return c.mode == ShipRollDamperMode::kPassiveBrake ? check_precession_brake(c.brake, T)
@@ -94,8 +92,8 @@ class BasicShipRollDamperController : public ControllerRuntime<ShipRollDamperLaw
   }
 
   explicit BasicShipRollDamperController(const Config& c, Clock clock = Clock{})
-      : ControllerRuntime<ShipRollDamperLaw, Clock>(c.runtime, c.drive, ShipRollDamperLaw::kDriveAxes,
-                                                    ShipRollDamperLaw(c), check(c), clock) {}
+      : ControllerRuntime<ShipRollDamperLaw, Clock>(c.runtime, DriveConfig{}, 0u, ShipRollDamperLaw(c), check(c),
+                                                    clock) {}
 };
 
 using ShipRollDamperController = BasicShipRollDamperController<>;

@@ -5,10 +5,13 @@
 // Law: firmware/control/two_rotor_stabilizer_law.hpp (M1^K = −k1 β1 − dK1 α'; two-axis also
 // M2^K = σ k2 β2 − dK2 γ'); the start-up check refuses gains outside the Hurwitz region of the closed loop's
 // characteristic polynomial, with the largest stable k1 as the bound.
-// Reads (SensorFrame): gimbal_angle_rad[kAxis2] = β1 [rad], gimbal_rate_rad_s[kAxis1] = α' [rad/s]; two-axis
-// also carrier_angle_rad[2] = β2 [rad], carrier_rate_rad_s[1] = γ' [rad/s].
-// Writes (ActuatorFrame): gimbal_torque_Nm[kAxis1] = M1^K, [kAxis2] = M2^K (0 for the gyro frame) [N m];
-// precession_brake = 0; status bit kRateLoopSaturated when a torque is clipped.
+// Frames: the two-rotor stabilizer's own (tools/devices/two_rotor_stabilizer/two_rotor_stabilizer_signals.toml,
+// docs/icd/two_rotor_stabilizer.md).
+// Reads beta1_rad = β1 [rad], alpha_rate_rad_s = α' [rad/s]; two-axis also beta2_rad = β2 [rad],
+// gamma_rate_rad_s = γ' [rad/s].
+// Writes frame1_torque_Nm = M1^K, frame2_torque_Nm = M2^K (0 for the gyro frame) [N m]; status bit
+// kRateLoopSaturated when a torque is clipped. No brake: the safe state is zero motor torque. Torque-mode
+// motors (no current loop).
 // Docs: docs/models/two-rotor-stabilizer.md#firmware-law
 #pragma once
 
@@ -18,30 +21,27 @@
 #include "firmware/control/config_check.hpp"
 #include "firmware/control/law_status_bits.hpp"
 #include "firmware/control/two_rotor_stabilizer_law.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/two_rotor_stabilizer_frames.hpp"
 
 namespace gyrostab::firmware {
 
 struct TwoRotorStabilizerConfig {
-  RuntimeConfig runtime{};
-  DriveConfig drive{};  // unused (torque-mode drives); kept for the runtime's common check
+  RuntimeConfigOf<msg::two_rotor_stabilizer::SensorFrame> runtime{};
   TwoRotorStabilizerParams law{};
 };
 
 class TwoRotorStabilizerLaw {
  public:
-  static constexpr std::uint32_t kDriveAxes = (1u << msg::kAxis1) | (1u << msg::kAxis2);
+  using SensorFrame = msg::two_rotor_stabilizer::SensorFrame;
+  using ActuatorFrame = msg::two_rotor_stabilizer::ActuatorFrame;
 
   explicit TwoRotorStabilizerLaw(const TwoRotorStabilizerConfig& c) : p_(c.law) {}
 
-  void control(const msg::SensorFrame& in, msg::ActuatorFrame& cmd) {
+  void control(const SensorFrame& in, ActuatorFrame& cmd) const {
     const TwoRotorTorques t =
-        two_rotor_torques(p_, in.gimbal_angle_rad[msg::kAxis2], in.gimbal_rate_rad_s[msg::kAxis1],
-                          in.carrier_angle_rad[2], in.carrier_rate_rad_s[1]);
-    cmd.gimbal_torque_Nm[msg::kAxis1] = t.M1;
-    cmd.gimbal_torque_Nm[msg::kAxis2] = t.M2;
-    cmd.precession_brake = 0.0;
+        two_rotor_torques(p_, in.beta1_rad, in.alpha_rate_rad_s, in.beta2_rad, in.gamma_rate_rad_s);
+    cmd.frame1_torque_Nm = t.M1;
+    cmd.frame2_torque_Nm = t.M2;
     if (t.saturated) cmd.status |= bit(LawStatusBit::kRateLoopSaturated);
   }
   void reset() {}
@@ -58,13 +58,13 @@ class BasicTwoRotorStabilizerController : public ControllerRuntime<TwoRotorStabi
   using Config = TwoRotorStabilizerConfig;
 
   static ConfigCheck check(const Config& c) {
-    const ConfigCheck r = check_runtime(c.runtime, c.drive, TwoRotorStabilizerLaw::kDriveAxes);
+    const ConfigCheck r = check_runtime(c.runtime, DriveConfig{}, 0u);
     if (!r.ok) return r;
     return check_two_rotor_stabilizer(c.law, c.runtime.control_period_s());
   }
 
   explicit BasicTwoRotorStabilizerController(const Config& c, Clock clock = Clock{})
-      : Base(c.runtime, c.drive, TwoRotorStabilizerLaw::kDriveAxes, TwoRotorStabilizerLaw(c), check(c), clock) {}
+      : Base(c.runtime, DriveConfig{}, 0u, TwoRotorStabilizerLaw(c), check(c), clock) {}
 };
 
 using TwoRotorStabilizerController = BasicTwoRotorStabilizerController<>;

@@ -14,8 +14,8 @@
 // by itself: B β'' + d2 β' = H φ' drives β' with φ'. A rotor spinning the other way is H < 0 here: both
 // signs flip, so the Config must state H > 0 in the plant's convention.
 //
-// The law (signals: φ' = SensorFrame carrier_rate_rad_s[kRoll], β = gimbal_angle_rad[kAxis2],
-// β' = gimbal_rate_rad_s[kAxis2]; output M2 = ActuatorFrame gimbal_torque_Nm[kAxis2] [N m]). With the
+// The law (signals of the ship roll damper's table: φ' = roll_rate_rad_s, β = precession_angle_rad,
+// β' = precession_rate_rad_s; output M2 = precession_torque_Nm [N m]). With the
 // gyroscopic drive on the case D = H cosβ φ' (the plant's term), the roll-rate feedback F = k_r cosβ φ',
 // σ = sgn β, dz = max(0, |β| − β_soft) and the schedule g = clamp((β_soft − |β|)/w, 0, 1):
 //   M_law   = F − d_c β' − k_c β − σ k_s dz − σ (1 − g) (max(0, σ F) + max(0, σ D))

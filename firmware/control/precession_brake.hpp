@@ -4,8 +4,8 @@
 // Book (Magnus §14.2):                 (14.8)  A φ'' + d1 φ' + c φ + H β' = E(t),
 //                                             B β'' + d2 β' + q β − H φ' = M2.
 // The term d2 β' of (14.8) moved to the right-hand side is the torque the brake applies to the case:
-//   M2 = −d2 β'                                  → ActuatorFrame::gimbal_torque_Nm[kAxis2]  [N m]
-// clipped to ±torque_limit_Nm; ActuatorFrame::precession_brake stays 0 (released). Why the torque field and
+//   M2 = −d2 β'                                  → the command precession_torque_Nm  [N m]
+// clipped to ±torque_limit_Nm; the command precession_brake stays 0 (released). Why the torque field and
 // not the brake fraction: the contract defines precession_brake = 1 as "case locked to the carrier" (the
 // safe state's holding brake), and a fraction would need a plant-side map from fraction to N m s/rad that
 // the contract does not define; a torque −d2 β' is exactly the (14.8) term whatever the actuator is. So the
@@ -14,7 +14,8 @@
 // invariant point ω_II or ω_III of (14.17)-(14.18)) is computed off-line; for the constructed reference ship
 // (A 3.2e7, c 1.1772e7, B 1.5e4, q 1350, H 1.018e6) it is ≈ 4.53e4 N m s/rad (the default), peak roll
 // 1.06 × static.
-// Signals: reads SensorFrame gimbal_rate_rad_s[kAxis2] = β' [rad/s]. Writes gimbal_torque_Nm[kAxis2] [N m].
+// Signals: reads β' (precession_rate_rad_s) [rad/s]; gives M2 (precession_torque_Nm) [N m] (the ship roll
+// damper's signal table, docs/icd/ship_roll_damper.md).
 // Sampled: D = d2 must satisfy d2 T / B ≤ 0.5 (sampled_loop_limits.hpp); for the defaults at 1 ms 0.003.
 // State: none. O(1), no heap. Tests: tests/unit/control_laws_test.cpp (sign, saturation, check).
 // Docs: docs/models/ship-roll-damper.md#firmware-laws

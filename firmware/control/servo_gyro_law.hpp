@@ -17,9 +17,8 @@
 // Torque demand instead of a rate: to make the gyro put M1_demand on axis 1, Ω = −M1_demand / (H cosβ)
 // (from (14.42)); near gimbal lock (|cosβ| → 0) the gyroscopic torque vanishes, so |cosβ| is floored at
 // cos_beta_floor (kGimbalLockGuard): the demand is then only partly delivered, never by an unbounded rate.
-// Signals: reads SensorFrame gimbal_angle_rad[kAxis2] = β [rad], gimbal_rate_rad_s[kAxis2] = β' [rad/s],
-// gimbal_rate_rad_s[kAxis1] = α' [rad/s] (feed-forward). Writes ActuatorFrame gimbal_torque_Nm[kAxis2] = M2
-// [N m].
+// Signals (the servo gyro's table, docs/icd/servo_gyro.md): reads β = drive_angle_rad [rad], β' =
+// drive_rate_rad_s [rad/s], α' = alpha_rate_rad_s [rad/s] (feed-forward); gives M2 = motor_torque_Nm [N m].
 // Sampled: k_p T / B ≤ 0.5 (sampled_loop_limits.hpp); defaults at 1 ms: 0.2.
 // State: the PI's integral I [N m] (PiState). O(1), no heap. Tests: tests/unit/control_laws_test.cpp (sign,
 // rate tracking on B β'' = M2 + H cosβ α', saturation and anti-windup, the torque-to-rate map).

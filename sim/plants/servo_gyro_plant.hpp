@@ -6,10 +6,10 @@
 // absolute encoder on axis 2 (β read in [−π, π): axis 2 turns without end), a tachometer for β' (noise
 // density, bias), an incremental encoder on axis 1 (α) and an axis-1 rate pick-off (noise density).
 //
-// State: [α, β, α', β'] in rad and rad/s (named accessors below). Inputs (ActuatorFrame):
-// gimbal_torque_Nm[kAxis2] = motor torque [N m]; precession_brake in [0, 1] × brake_full_Nms [N m s/rad] on
-// β'. Outputs (SensorFrame): encoder_count / gimbal_angle_rad / gimbal_rate_rad_s [kAxis2] (β, β') and
-// [kAxis1] (α, α').
+// State: [α, β, α', β'] in rad and rad/s (named accessors below). Frames: the servo gyro's own
+// (tools/devices/servo_gyro/servo_gyro_signals.toml, docs/icd/servo_gyro.md): in, motor_torque_Nm = M2 [N m]
+// and precession_brake in [0, 1] × brake_full_Nms [N m s/rad] on β'; out, alpha_rad, drive_angle_rad,
+// alpha_rate_rad_s, drive_rate_rad_s, alpha_encoder_count, drive_encoder_count.
 // Random streams of the scene seed, one per consumer (seeded_rng.hpp): 1 the tachometer, 2 the axis-1 rate;
 // adding a consumer never shifts another.
 // Allocation-free after construction. Docs: docs/models/servo-gyro.md. Oracle:
@@ -22,8 +22,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/servo_gyro_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/servo_gyro.hpp"
@@ -66,6 +65,8 @@ struct DrivenServoGyro {
 
 class ServoGyroPlant {
  public:
+  using SensorFrame = msg::servo_gyro::SensorFrame;
+  using ActuatorFrame = msg::servo_gyro::ActuatorFrame;
   using Gyro = models::ServoGyro;
   using Dynamics = DrivenServoGyro;
   using State = Dynamics::State;
@@ -93,22 +94,22 @@ class ServoGyroPlant {
     x_ = Gyro::make_state(0.0, 0.0, 0.0, 0.0);
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
     const std::int64_t drive_counts = drive_encoder_.counts(beta_rad());
     double beta = drive_encoder_.angle_of(drive_counts);
     if (beta >= std::numbers::pi) beta -= 2.0 * std::numbers::pi;
-    f.encoder_count[msg::kAxis2] = static_cast<std::int32_t>(drive_counts);
-    f.gimbal_angle_rad[msg::kAxis2] = beta;
-    f.gimbal_rate_rad_s[msg::kAxis2] = beta_rate_rad_s() + drive_rate_noise_.sample(rng_drive_rate_);
+    f.drive_encoder_count = static_cast<double>(static_cast<std::int32_t>(drive_counts));
+    f.drive_angle_rad = beta;
+    f.drive_rate_rad_s = beta_rate_rad_s() + drive_rate_noise_.sample(rng_drive_rate_);
     const std::int64_t alpha_counts = alpha_encoder_.counts(alpha_rad());
-    f.encoder_count[msg::kAxis1] = static_cast<std::int32_t>(alpha_counts);
-    f.gimbal_angle_rad[msg::kAxis1] = alpha_encoder_.angle_of(alpha_counts);
-    f.gimbal_rate_rad_s[msg::kAxis1] = alpha_rate_rad_s() + alpha_rate_noise_.sample(rng_alpha_rate_);
+    f.alpha_encoder_count = static_cast<double>(static_cast<std::int32_t>(alpha_counts));
+    f.alpha_rad = alpha_encoder_.angle_of(alpha_counts);
+    f.alpha_rate_rad_s = alpha_rate_rad_s() + alpha_rate_noise_.sample(rng_alpha_rate_);
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
-    gyro_.command_Nm = cmd.gimbal_torque_Nm[msg::kAxis2];
+  void actuate(const ActuatorFrame& cmd) {
+    gyro_.command_Nm = cmd.motor_torque_Nm;
     gyro_.brake_Nms = std::clamp(cmd.precession_brake, 0.0, 1.0) * p_.brake_full_Nms;
   }
 

@@ -5,10 +5,10 @@
 // precession encoder (incremental, nearest count) and precession rate (noise density).
 //
 // State: the stabilized ship [φ, β, φ', β'] and the reference ship's, in rad and rad/s (named accessors
-// below). Inputs (ActuatorFrame): gimbal_torque_Nm[kAxis2] = precession torque M2 [N m]; precession_brake in
-// [0, 1] × brake_full_Nms [N m s/rad] (the safe state locks the case). Outputs (SensorFrame):
-// carrier_angle_rad[kRoll], carrier_rate_rad_s[kRoll], encoder_count / gimbal_angle_rad / gimbal_rate_rad_s
-// [kAxis2].
+// below). Frames: the ship roll damper's own (tools/devices/ship_roll_damper/ship_roll_damper_signals.toml,
+// docs/icd/ship_roll_damper.md): in, precession_torque_Nm = M2 [N m] and precession_brake in [0, 1] ×
+// brake_full_Nms [N m s/rad] (the safe state locks the case); out, roll_rad, roll_rate_rad_s,
+// precession_angle_rad, precession_rate_rad_s, precession_encoder_count.
 // Random streams of the scene seed, one per consumer (seeded_rng.hpp): 1 the sea, 2 roll angle noise, 3 roll
 // rate noise, 4 precession rate noise; adding a consumer never shifts another.
 // Allocation-free after construction. Docs: docs/models/ship-roll-damper.md. Oracle:
@@ -20,8 +20,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/ship_roll_damper_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/ship_roll_damper.hpp"
@@ -58,6 +57,8 @@ struct ShipRollDamperPlantParams {
 
 class ShipRollDamperPlant {
  public:
+  using SensorFrame = msg::ship_roll_damper::SensorFrame;
+  using ActuatorFrame = msg::ship_roll_damper::ActuatorFrame;
   using Ship = models::ShipRollDamper;
   using Dynamics = ShipInSeaOf<motion::SeaRollMoment>;
   using State = Dynamics::State;
@@ -91,18 +92,18 @@ class ShipRollDamperPlant {
     x_ref_[Ship::kRoll] = p.initial_roll;
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
-    f.carrier_angle_rad[msg::kRoll] = roll_rad() + roll_angle_noise_.sample(rng_angle_);
-    f.carrier_rate_rad_s[msg::kRoll] = roll_rate_rad_s() + roll_rate_noise_.sample(rng_rate_);
+    f.roll_rad = roll_rad() + roll_angle_noise_.sample(rng_angle_);
+    f.roll_rate_rad_s = roll_rate_rad_s() + roll_rate_noise_.sample(rng_rate_);
     const std::int64_t counts = encoder_.counts(precession_rad());
-    f.encoder_count[msg::kAxis2] = static_cast<std::int32_t>(counts);
-    f.gimbal_angle_rad[msg::kAxis2] = encoder_.angle_of(counts);
-    f.gimbal_rate_rad_s[msg::kAxis2] = precession_rate_rad_s() + precession_rate_noise_.sample(rng_precession_);
+    f.precession_encoder_count = static_cast<double>(static_cast<std::int32_t>(counts));
+    f.precession_angle_rad = encoder_.angle_of(counts);
+    f.precession_rate_rad_s = precession_rate_rad_s() + precession_rate_noise_.sample(rng_precession_);
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
-    ship_.command_Nm = cmd.gimbal_torque_Nm[msg::kAxis2];
+  void actuate(const ActuatorFrame& cmd) {
+    ship_.command_Nm = cmd.precession_torque_Nm;
     // The bearing's own d2 is in the model (it applies −d2 β'); only the controller's brake here.
     ship_.brake_Nms = std::clamp(cmd.precession_brake, 0.0, 1.0) * p_.brake_full_Nms;
   }

@@ -6,10 +6,10 @@
 //
 // State (one layout for both kinds): [α, γ, β1, β2 (rad), α', γ', β1', β2' (rad/s)]; the gyro frame uses α and
 // β1 = β (the linked cases' angle), γ and β2 stay 0.
-// Inputs (ActuatorFrame): gimbal_torque_Nm[kAxis1] = M1^K on frame 1, [kAxis2] = M2^K on frame 2 (two-axis).
-// Outputs (SensorFrame): gimbal_angle_rad / gimbal_rate_rad_s [kAxis1] = α, α' (frame 1), [kAxis2] = β1, β1'
-// (the axis-1 loop's case angle); carrier_angle_rad / carrier_rate_rad_s [1] = γ, γ' and [2] = β2, β2'
-// (two-axis; 0 for the gyro frame).
+// Frames: the two-rotor stabilizer's own (tools/devices/two_rotor_stabilizer/two_rotor_stabilizer_signals.toml,
+// docs/icd/two_rotor_stabilizer.md): in, frame1_torque_Nm = M1^K on frame 1 and frame2_torque_Nm = M2^K on
+// frame 2 (two-axis; the gyro frame ignores it); out, γ, β2, γ', β2' (two-axis; 0 for the gyro frame) and α, β1,
+// α', β1' (frame 1 and the case its loop reads). No brake.
 // Allocation-free after construction. Docs: docs/models/two-rotor-stabilizer.md. Oracle:
 // tests/oracle/two_rotor_stabilizer_test.cpp; the shipped scenes sim/scenes/two-rotor-*.toml run in
 // tests/determinism and tests/alloc.
@@ -18,8 +18,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "gyrostab_signals/two_rotor_stabilizer_frames.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "sim/dynamics/substepping.hpp"
 #include "sim/models/two_rotor_gyro_frame.hpp"
@@ -97,6 +96,8 @@ struct TwoRotorDynamics {
 
 class TwoRotorStabilizerPlant {
  public:
+  using SensorFrame = msg::two_rotor_stabilizer::SensorFrame;
+  using ActuatorFrame = msg::two_rotor_stabilizer::ActuatorFrame;
   using Dynamics = TwoRotorDynamics;
   using State = Dynamics::State;
   using Axis = models::TwoRotorTwoAxis;
@@ -113,21 +114,21 @@ class TwoRotorStabilizerPlant {
     x_.setZero();
   }
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     begin_sensor_frame(f, tick, t_.tick_ns);
-    f.gimbal_angle_rad[msg::kAxis1] = x_[Axis::kAlpha];
-    f.gimbal_rate_rad_s[msg::kAxis1] = x_[Axis::kAlphaRate];
-    f.gimbal_angle_rad[msg::kAxis2] = x_[Axis::kBeta1];
-    f.gimbal_rate_rad_s[msg::kAxis2] = x_[Axis::kBeta1Rate];
-    f.carrier_angle_rad[1] = x_[Axis::kGamma];
-    f.carrier_rate_rad_s[1] = x_[Axis::kGammaRate];
-    f.carrier_angle_rad[2] = x_[Axis::kBeta2];
-    f.carrier_rate_rad_s[2] = x_[Axis::kBeta2Rate];
+    f.alpha_rad = x_[Axis::kAlpha];
+    f.alpha_rate_rad_s = x_[Axis::kAlphaRate];
+    f.beta1_rad = x_[Axis::kBeta1];
+    f.beta1_rate_rad_s = x_[Axis::kBeta1Rate];
+    f.gamma_rad = x_[Axis::kGamma];
+    f.gamma_rate_rad_s = x_[Axis::kGammaRate];
+    f.beta2_rad = x_[Axis::kBeta2];
+    f.beta2_rate_rad_s = x_[Axis::kBeta2Rate];
   }
 
-  void actuate(const msg::ActuatorFrame& cmd) {
-    dyn_.M1K = cmd.gimbal_torque_Nm[msg::kAxis1];
-    dyn_.M2K = p_.kind == TwoRotorPlantKind::kTwoAxis ? cmd.gimbal_torque_Nm[msg::kAxis2] : 0.0;
+  void actuate(const ActuatorFrame& cmd) {
+    dyn_.M1K = cmd.frame1_torque_Nm;
+    dyn_.M2K = p_.kind == TwoRotorPlantKind::kTwoAxis ? cmd.frame2_torque_Nm : 0.0;
   }
 
   void advance(std::int64_t tick) { driver_.advance_tick(tick, x_); }

@@ -86,23 +86,44 @@ struct LegacyFrames {
 // Each: the controller type, a default Config, and the expected command of a fresh controller on frame f
 // (first control run; for the servo gyro the PI integral is still zero then).
 
-struct ShipActive : LegacyFrames {
+// The ship roll damper's frames: a good frame, the precession torque, two frames with a NaN in a signal the law
+// reads.
+struct ShipFrames {
+  using SensorFrame = msg::ship_roll_damper::SensorFrame;
+  using ActuatorFrame = msg::ship_roll_damper::ActuatorFrame;
+  static SensorFrame frame(std::uint64_t k) {
+    const double x = static_cast<double>(k % 100) * 1e-5;
+    SensorFrame f{};
+    set_header(f, k);
+    f.roll_rad = 0.02 + x;
+    f.roll_rate_rad_s = 0.01 - x;
+    f.precession_angle_rad = 0.03 - x;
+    f.precession_rate_rad_s = -0.01 + x;
+    return f;
+  }
+  static double torque(const ActuatorFrame& c) { return c.precession_torque_Nm; }
+  static void poison(SensorFrame& f5, SensorFrame& f6) {
+    f5.precession_rate_rad_s = std::numeric_limits<double>::quiet_NaN();
+    f6.roll_rate_rad_s = std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
+struct ShipActive : ShipFrames {
   using Controller = ShipRollDamperController;
   static Controller::Config config() { return {}; }
   static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
     const ActivePrecessionParams p{};
-    const double phi_rate = f.carrier_rate_rad_s[msg::kRoll], beta = f.gimbal_angle_rad[msg::kAxis2];
-    const double beta_rate = f.gimbal_rate_rad_s[msg::kAxis2];
+    const double phi_rate = f.roll_rate_rad_s, beta = f.precession_angle_rad;
+    const double beta_rate = f.precession_rate_rad_s;
     // Active law inside the soft limit, not braking: k_r cosβ φ' − d_c β' − k_c β.
     const double M2 = p.roll_rate_gain * std::cos(beta) * phi_rate - p.precession_damping * beta_rate -
                       p.centring_stiffness * beta;
-    EXPECT_NEAR(c.gimbal_torque_Nm[msg::kAxis2], M2, 1e-12 * std::abs(M2));
-    EXPECT_EQ(c.gimbal_torque_Nm[msg::kAxis1], 0.0);
+    EXPECT_NEAR(c.precession_torque_Nm, M2, 1e-12 * std::abs(M2));
     EXPECT_EQ(c.precession_brake, 0.0);
   }
 };
 
-struct ShipPassive : LegacyFrames {
+struct ShipPassive : ShipFrames {
   using Controller = ShipRollDamperController;
   static Controller::Config config() {
     Controller::Config c{};
@@ -110,9 +131,8 @@ struct ShipPassive : LegacyFrames {
     return c;
   }
   static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
-    const double M2 = -PrecessionBrakeParams{}.d2 * f.gimbal_rate_rad_s[msg::kAxis2];  // −d2 β'
-    EXPECT_DOUBLE_EQ(c.gimbal_torque_Nm[msg::kAxis2], M2);
-    EXPECT_EQ(c.gimbal_torque_Nm[msg::kAxis1], 0.0);
+    const double M2 = -PrecessionBrakeParams{}.d2 * f.precession_rate_rad_s;  // −d2 β'
+    EXPECT_DOUBLE_EQ(c.precession_torque_Nm, M2);
     EXPECT_EQ(c.precession_brake, 0.0);
   }
 };
@@ -145,21 +165,36 @@ struct Monorail {
   }
 };
 
-struct ServoGyro : LegacyFrames {
+struct ServoGyro {
   using Controller = ServoGyroController;
+  using SensorFrame = msg::servo_gyro::SensorFrame;
+  using ActuatorFrame = msg::servo_gyro::ActuatorFrame;
   static Controller::Config config() {
     Controller::Config c{};
     c.reference = 0.02;  // Ω [rad/s], small so the first command is not saturated
     return c;
   }
+  static SensorFrame frame(std::uint64_t k) {
+    const double x = static_cast<double>(k % 100) * 1e-5;
+    SensorFrame f{};
+    set_header(f, k);
+    f.alpha_rad = 0.01 + x;
+    f.drive_angle_rad = 0.03 - x;
+    f.alpha_rate_rad_s = 0.02 + x;
+    f.drive_rate_rad_s = -0.01 + x;
+    return f;
+  }
+  static double torque(const ActuatorFrame& c) { return c.motor_torque_Nm; }
+  static void poison(SensorFrame& f5, SensorFrame& f6) {
+    f5.drive_rate_rad_s = std::numeric_limits<double>::quiet_NaN();
+    f6.alpha_rate_rad_s = std::numeric_limits<double>::quiet_NaN();
+  }
   static void expect_command(const SensorFrame& f, const ActuatorFrame& c) {
     const ServoGyroParams p{};
-    const double beta = f.gimbal_angle_rad[msg::kAxis2];
+    const double beta = f.drive_angle_rad;
     // First run: k_p (Ω − β') − H cosβ α' (14.43), integral still 0.
-    const double M2 = p.rate_kp * (0.02 - f.gimbal_rate_rad_s[msg::kAxis2]) -
-                      p.H * std::cos(beta) * f.gimbal_rate_rad_s[msg::kAxis1];
-    EXPECT_NEAR(c.gimbal_torque_Nm[msg::kAxis2], M2, 1e-12 * std::abs(M2));
-    EXPECT_EQ(c.gimbal_torque_Nm[msg::kAxis1], 0.0);
+    const double M2 = p.rate_kp * (0.02 - f.drive_rate_rad_s) - p.H * std::cos(beta) * f.alpha_rate_rad_s;
+    EXPECT_NEAR(c.motor_torque_Nm, M2, 1e-12 * std::abs(M2));
     EXPECT_EQ(c.precession_brake, 0.0);
   }
 };
@@ -454,14 +489,14 @@ TEST(ControllerRuntime, TheCurrentLoopTurnsTheTorqueIntoAVoltageOfTheSameSign) {
 TEST(ControllerRuntime, ActiveShipBeyondTheSoftLimitReportsItAndBrakesTowardTheStop) {
   ShipRollDamperController ctl(ShipRollDamperConfig{});
   const ActivePrecessionParams p{};
-  ActuatorFrame out{};
-  SensorFrame f = good_frame(0);
-  f.gimbal_angle_rad[msg::kAxis2] = p.beta_soft + 0.02;
-  f.gimbal_rate_rad_s[msg::kAxis2] = 0.5;  // moving out beyond the limit: braking
+  ShipActive::ActuatorFrame out{};
+  ShipActive::SensorFrame f = ShipActive::frame(0);
+  f.precession_angle_rad = p.beta_soft + 0.02;
+  f.precession_rate_rad_s = 0.5;  // moving out beyond the limit: braking
   ctl.step(0, &f, out);
   EXPECT_TRUE((out.status & bit(LawStatusBit::kBeyondSoftLimit)) != 0u);
   EXPECT_TRUE((out.status & bit(LawStatusBit::kEndStopBraking)) != 0u);
-  EXPECT_LT(out.gimbal_torque_Nm[msg::kAxis2], 0.0);
+  EXPECT_LT(out.precession_torque_Nm, 0.0);
   EXPECT_EQ(out.precession_brake, 0.0) << "the law brakes with torque, never with the holding brake";
 }
 
@@ -472,15 +507,14 @@ TEST(ControllerRuntime, ServoGyroTorqueDemandBecomesARateReference) {
   cfg.reference_kind = ServoGyroReference::kAxis1Torque;
   cfg.reference = -0.01;
   ServoGyroController ctl(cfg);
-  const SensorFrame f = good_frame(0);
-  ActuatorFrame out{};
+  const ServoGyro::SensorFrame f = ServoGyro::frame(0);
+  ServoGyro::ActuatorFrame out{};
   ctl.step(0, &f, out);
   const ServoGyroParams p{};
-  const double beta = f.gimbal_angle_rad[msg::kAxis2];
+  const double beta = f.drive_angle_rad;
   const double omega = 0.01 / (p.H * std::cos(beta));
-  const double M2 = p.rate_kp * (omega - f.gimbal_rate_rad_s[msg::kAxis2]) -
-                    p.H * std::cos(beta) * f.gimbal_rate_rad_s[msg::kAxis1];
-  EXPECT_NEAR(out.gimbal_torque_Nm[msg::kAxis2], M2, 1e-12);
+  const double M2 = p.rate_kp * (omega - f.drive_rate_rad_s) - p.H * std::cos(beta) * f.alpha_rate_rad_s;
+  EXPECT_NEAR(out.motor_torque_Nm, M2, 1e-12);
 }
 
 }  // namespace controllers_test

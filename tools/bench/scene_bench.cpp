@@ -264,17 +264,17 @@ void BM_ShipController(benchmark::State& state) {
     return;
   }
   auto controller = std::make_unique<Controller>(c);
-  msg::AnySensorFrame f{};
-  msg::AnyActuatorFrame out{};
+  typename Controller::SensorFrame f{};
+  typename Controller::ActuatorFrame out{};
   std::uint64_t k = 0;
   for (auto _ : state) {
     f.tick = k;
     f.time_ns = static_cast<std::int64_t>(k) * 1'000'000;
     f.sample_time_ns = f.time_ns;
     f.sequence = static_cast<std::uint32_t>(k);
-    f.carrier_rate_rad_s[msg::kRoll] = 0.01 * std::sin(1e-3 * static_cast<double>(k));
-    f.gimbal_angle_rad[msg::kAxis2] = 0.2;
-    f.gimbal_rate_rad_s[msg::kAxis2] = 0.01;
+    f.roll_rate_rad_s = 0.01 * std::sin(1e-3 * static_cast<double>(k));
+    f.precession_angle_rad = 0.2;
+    f.precession_rate_rad_s = 0.01;
     controller->step(k, &f, out);
     ++k;
     benchmark::DoNotOptimize(out);

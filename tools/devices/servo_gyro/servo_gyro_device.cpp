@@ -19,7 +19,7 @@ extern const DeviceDescriptor kServoGyro{
         "settle_s, with the sensor errors and the torque the PI did not command as inputs; "
         "`rate_loop_fit_samples`) beside `_predicted_sampled` (the axis-2 inertia, the firmware's PI, hold and "
         "latency; `sampled_loop_max_abs_z`) and `_predicted` (the continuous design, ω_n = sqrt(k_i/B)); with a "
-        "current loop or a law below the tick rate `rate_loop` (why not). "
+        "law below the tick rate `rate_loop` (why not). "
         "Over the whole drive revolutions after settle_s (least-squares fits of a mean and the β or 2β harmonic against the drive angle β, sim/analysis/servo_drive_sums.hpp): "
         "`alpha_A_rad` and `phase_rad` (α = α_A cos(β − φ); −π/2 at resonance), `M1_max_Nm` (peak of the "
         "gyroscopic torque −H cosβ β' on axis 1), `M2_max_Nm` (peak of the applied motor torque, sensor "

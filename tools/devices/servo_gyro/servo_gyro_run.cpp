@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/servo_gyro_outputs.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/analysis/servo_drive_sums.hpp"
@@ -29,14 +30,12 @@ using Plant = plants::ServoGyroPlant;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
 using Controller = firmware::BasicServoGyroController<firmware::posix::MonotonicClock>;
 
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"alpha_rad",  "alpha_rate_rad_s", "drive_rate_rad_s",
-                                          "M1_gyro_Nm", "motor_torque_Nm",  "status_bits"};
-  return c;
-}
-
 class ServoGyroRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::servo_gyro::Record;
+
   explicit ServoGyroRun(const ServoGyroScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -50,17 +49,17 @@ class ServoGyroRun {
 
   // The inputs of the fitted recurrence of β' (linear_prediction_fit.hpp): the errors of the signals the rate
   // loop read (the tachometer's, and the axis-1 rate the feed-forward reads) and the torque it did not command.
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     plant_.sense(tick, f);
     if (!applies_) return;
     // The feed-forward this frame makes the law add (14.43), applied latency ticks later.
     const std::size_t slots = ff_.size();
     ff_[static_cast<std::size_t>(tick) % slots] =
         s_.controller.law.feedforward
-            ? -s_.controller.law.H * std::cos(f.gimbal_angle_rad[msg::kAxis2]) * f.gimbal_rate_rad_s[msg::kAxis1]
+            ? -s_.controller.law.H * std::cos(f.drive_angle_rad) * f.alpha_rate_rad_s
             : 0.0;
-    const double v[3] = {f.gimbal_rate_rad_s[msg::kAxis2] - plant_.beta_rate_rad_s(),
-                         f.gimbal_rate_rad_s[msg::kAxis1] - plant_.alpha_rate_rad_s(), coupling_};
+    const double v[3] = {f.drive_rate_rad_s - plant_.beta_rate_rad_s(), f.alpha_rate_rad_s - plant_.alpha_rate_rad_s(),
+                         coupling_};
     fit_.add(static_cast<double>(tick) * s_.loop.tick_s(), plant_.beta_rate_rad_s(), v);
   }
   // The axis-2 torque the PI did not command over the last tick: the gyroscopic terms of (14.41) (trapezoid
@@ -71,7 +70,7 @@ class ServoGyroRun {
     const double b = plant_.beta_rad(), a1 = plant_.alpha_rate_rad_s();
     return g.H * std::cos(b) * a1 - g.Q * std::sin(b) * std::cos(b) * a1 * a1;
   }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -110,13 +109,13 @@ class ServoGyroRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
-    row[0] = plant_.alpha_rad();
-    row[1] = plant_.alpha_rate_rad_s();
-    row[2] = plant_.beta_rate_rad_s();
-    row[3] = plant_.gyro_torque_axis1_Nm();
-    row[4] = last_.gimbal_torque_Nm[msg::kAxis2];
-    row[5] = static_cast<double>(last_.status);
+  void record(Record& r) const {
+    r.alpha_rad = plant_.alpha_rad();
+    r.alpha_rate_rad_s = plant_.alpha_rate_rad_s();
+    r.drive_rate_rad_s = plant_.beta_rate_rad_s();
+    r.M1_gyro_Nm = plant_.gyro_torque_axis1_Nm();
+    r.motor_torque_Nm = last_.motor_torque_Nm;
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -171,7 +170,7 @@ class ServoGyroRun {
   // the sampled pair's centre.
   void rate_loop_figures(nlohmann::json& f) const {
     if (!applies_) {
-      f["rate_loop"] = "not computed: the law runs below the tick rate, or a current loop drives the motor";
+      f["rate_loop"] = "not computed: the law runs below the tick rate";
       return;
     }
     const analysis::PairShape c = analysis::pair_shape(rate_loop_.continuous[0], rate_loop_.continuous[1]);
@@ -192,7 +191,7 @@ class ServoGyroRun {
     f["rate_loop_damping_ratio"] = got.damping_ratio;
   }
   static bool rate_loop_applies(const ServoGyroScene& s) {
-    return s.controller.runtime.control_divisor == 1 && !s.controller.drive.enabled;
+    return s.controller.runtime.control_divisor == 1;
   }
 
   // report.json "error_estimate": 1 s of the steady drive from the end of the settling time (the run's middle
@@ -212,7 +211,7 @@ class ServoGyroRun {
   const ServoGyroScene& s_;
   Plant plant_;
   std::int64_t settle_tick_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   bool started_{false};
   double beta_start_{0.0};
   std::int64_t revolutions_{0};
@@ -230,10 +229,11 @@ struct ServoGyroTraits {
   using Scene = ServoGyroScene;
   using Binding = ServoGyroRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
-  // The law's torque limit on both axes; no voltage limit (a torque-mode drive: the voltages are unused).
+  // The law's torque limit on the axis-2 motor.
   static hil::ActuatorLimits actuator_limits(const Scene& s) {
-    return hil::ActuatorLimits::torque_limited(s.controller.law.torque_limit_Nm);
+    msg::servo_gyro::ActuatorFrame l = hil::ActuatorLimits::unlimited<msg::servo_gyro::ActuatorFrame>();
+    l.motor_torque_Nm = s.controller.law.torque_limit_Nm;
+    return hil::ActuatorLimits::of(l);
   }
   static nlohmann::json limits(const Scene& s) { return {{"motor_torque_limit_Nm", s.controller.law.torque_limit_Nm}}; }
 };

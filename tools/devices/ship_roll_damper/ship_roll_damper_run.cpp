@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/ship_roll_damper_outputs.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/analysis/running_stats.hpp"
@@ -26,15 +27,12 @@ using Plant = plants::ShipRollDamperPlant;
 // Compute-time counters read CLOCK_MONOTONIC; the commands do not depend on it (determinism holds).
 using Controller = firmware::BasicShipRollDamperController<firmware::posix::MonotonicClock>;
 
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"roll_rad",        "roll_unstabilized_rad", "precession_rad",
-                                          "roll_rate_rad_s", "precession_rate_rad_s", "wave_moment_Nm",
-                                          "precession_torque_Nm", "status_bits"};
-  return c;
-}
-
 class ShipRollDamperRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::ship_roll_damper::Record;
+
   explicit ShipRollDamperRun(const ShipRollDamperScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -46,12 +44,12 @@ class ShipRollDamperRun {
         decay_fit_(0.0, decay_trial_ ? s.loop.duration_s : -1.0, s.loop.tick_s() * static_cast<double>(decay_every_),
                    static_cast<int>(decay_.roots.s.size()) + 2) {}
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) {
+  void sense(std::int64_t tick, SensorFrame& f) {
     plant_.sense(tick, f);
     if (decay_trial_ && tick % decay_every_ == 0)
       decay_fit_.add(static_cast<double>(tick) * s_.loop.tick_s(), plant_.roll_rad());
   }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -88,16 +86,16 @@ class ShipRollDamperRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
+  void record(Record& r) const {
     const double t = 1e-9 * static_cast<double>((static_cast<std::int64_t>(last_.tick) + 1) * s_.loop.tick_ns);
-    row[0] = plant_.roll_rad();
-    row[1] = plant_.reference_roll_rad();
-    row[2] = plant_.precession_rad();
-    row[3] = plant_.roll_rate_rad_s();
-    row[4] = plant_.precession_rate_rad_s();
-    row[5] = plant_.wave_moment_Nm(t);
-    row[6] = last_.gimbal_torque_Nm[msg::kAxis2];
-    row[7] = static_cast<double>(last_.status);
+    r.roll_rad = plant_.roll_rad();
+    r.roll_unstabilized_rad = plant_.reference_roll_rad();
+    r.precession_rad = plant_.precession_rad();
+    r.roll_rate_rad_s = plant_.roll_rate_rad_s();
+    r.precession_rate_rad_s = plant_.precession_rate_rad_s();
+    r.wave_moment_Nm = plant_.wave_moment_Nm(t);
+    r.precession_torque_Nm = last_.precession_torque_Nm;
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -209,7 +207,7 @@ class ShipRollDamperRun {
   const ShipRollDamperScene& s_;
   Plant plant_;
   std::int64_t settle_tick_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   analysis::RunningStats roll_, roll_ref_;
   double precession_peak_{0.0}, torque_peak_{0.0};
   double roll_rate_peak_{0.0}, precession_rate_peak_{0.0}, penetration_peak_{-1e300};
@@ -229,7 +227,7 @@ class ShipRollDamperRun {
   static constexpr double kDecaySampleS = 0.05;
   static bool roll_decay_trial(const ShipRollDamperScene& s) {
     return s.plant.sea.regular() && s.plant.sea.wave.E0 == 0.0 && s.plant.initial_roll != 0.0 &&
-           s.controller.runtime.control_divisor == 1 && !s.controller.drive.enabled;
+           s.controller.runtime.control_divisor == 1;
   }
   void decay_figures(nlohmann::json& f) const {
     if (!decay_trial_) return;
@@ -262,7 +260,6 @@ struct ShipRollDamperTraits {
   using Scene = ShipRollDamperScene;
   using Binding = ShipRollDamperRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
   static nlohmann::json limits(const Scene& s) {
     const auto& a = s.controller.active;
     nlohmann::json l{{"precession_stop_rad", s.plant.ship.beta_stop},

@@ -14,15 +14,15 @@ ShipRollDamperSampled ship_roll_damper_sampled(const ShipRollDamperScene& s) {
   c.brake.torque_limit_Nm = c.active.torque_limit_Nm = 1e300;
   // The law on the frame the plant fills at x (exact sensors), a fresh copy each time (no braking latch).
   const auto law = [&](const Ship::State& x) {
-    msg::SensorFrame f{};
-    f.carrier_angle_rad[msg::kRoll] = x[Ship::kRoll];
-    f.carrier_rate_rad_s[msg::kRoll] = x[Ship::kRollRate];
-    f.gimbal_angle_rad[msg::kAxis2] = x[Ship::kPrecession];
-    f.gimbal_rate_rad_s[msg::kAxis2] = x[Ship::kPrecessionRate];
+    firmware::ShipRollDamperLaw::SensorFrame f{};
+    f.roll_rad = x[Ship::kRoll];
+    f.roll_rate_rad_s = x[Ship::kRollRate];
+    f.precession_angle_rad = x[Ship::kPrecession];
+    f.precession_rate_rad_s = x[Ship::kPrecessionRate];
     firmware::ShipRollDamperLaw l(c);
-    msg::ActuatorFrame cmd{};
+    firmware::ShipRollDamperLaw::ActuatorFrame cmd{};
     l.control(f, cmd);
-    return Eigen::Matrix<double, 1, 1>(cmd.gimbal_torque_Nm[msg::kAxis2]);
+    return Eigen::Matrix<double, 1, 1>(cmd.precession_torque_Nm);
   };
   const auto f = [&](const Ship::State& x, const Eigen::Matrix<double, 1, 1>& u) {
     m.inputs.M2 = u[0];

@@ -21,10 +21,13 @@ using Controller = firmware::BasicShipRollDamperController<firmware::posix::Mono
 // The scene's plant, recording after every tick what it held over the tick and the state it reached.
 class RecordingShip {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+
   RecordingShip(const ShipRollDamperScene& s, ShipRollDamperStudySetup& out)
       : plant_(s.plant, s.loop.plant_timing()), out_(out) {}
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
-  void actuate(const msg::ActuatorFrame& cmd) { plant_.actuate(cmd); }
+  void sense(std::int64_t tick, SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const ActuatorFrame& cmd) { plant_.actuate(cmd); }
   void advance(std::int64_t tick) {
     out_.inputs.push_back(plant_.held_inputs());
     plant_.advance(tick);

@@ -43,12 +43,12 @@ TwoRotorLinearLoop two_rotor_linear_loop(const TwoRotorStabilizerScene& s) {
   Plant plant(s.plant, s.loop.plant_timing());
   for (int i = 0; i < kN; ++i) {
     plant.set_state(Plant::State::Unit(i));
-    msg::SensorFrame f{};
+    Plant::SensorFrame f{};
     plant.sense(0, f);
-    msg::ActuatorFrame out{};
+    firmware::TwoRotorStabilizerLaw::ActuatorFrame out{};
     law.control(f, out);
-    K(0, i) = out.gimbal_torque_Nm[msg::kAxis1];
-    K(1, i) = out.gimbal_torque_Nm[msg::kAxis2];
+    K(0, i) = out.frame1_torque_Nm;
+    K(1, i) = out.frame2_torque_Nm;
   }
   TwoRotorLinearLoop loop;
   for (int i = 0; i < kN; ++i)

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
+#include "gyrostab_signals/two_rotor_stabilizer_outputs.hpp"
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/linear_prediction_fit.hpp"
 #include "tools/devices/two_rotor_stabilizer/two_rotor_sampled.hpp"
@@ -28,13 +29,6 @@ namespace {
 using Plant = plants::TwoRotorStabilizerPlant;
 using Axis = models::TwoRotorTwoAxis;
 using Controller = firmware::BasicTwoRotorStabilizerController<firmware::posix::MonotonicClock>;
-
-const std::vector<std::string>& columns() {
-  static const std::vector<std::string> c{"alpha_rad", "gamma_rad", "beta1_rad", "beta2_rad",
-                                          "M1K_Nm",    "M2K_Nm",    "single_rotor_alpha_rad",
-                                          "link_torque_Nm", "status_bits"};
-  return c;
-}
 
 // The single rotor of the comparison with the law closed continuously.
 struct SingleRotor {
@@ -61,6 +55,10 @@ models::TwoRotorFrameParams single_of(models::TwoRotorFrameParams p) {
 
 class TwoRotorRun {
  public:
+  using SensorFrame = Plant::SensorFrame;
+  using ActuatorFrame = Plant::ActuatorFrame;
+  using Record = msg::two_rotor_stabilizer::Record;
+
   explicit TwoRotorRun(const TwoRotorStabilizerScene& s)
       : s_(s),
         plant_(s.plant, s.loop.plant_timing()),
@@ -77,8 +75,8 @@ class TwoRotorRun {
              static_cast<int>(sampled_.roots.s.size()) + 2),
         window_(s.loop.ticks() / 2, std::max<std::int64_t>(1, static_cast<std::int64_t>(1.0 / s.loop.tick_s()))) {}
 
-  void sense(std::int64_t tick, msg::SensorFrame& f) { plant_.sense(tick, f); }
-  void actuate(const msg::ActuatorFrame& cmd) {
+  void sense(std::int64_t tick, SensorFrame& f) { plant_.sense(tick, f); }
+  void actuate(const ActuatorFrame& cmd) {
     last_ = cmd;
     plant_.actuate(cmd);
   }
@@ -106,13 +104,16 @@ class TwoRotorRun {
   static const char* state_name(int i) { return Plant::state_name(i); }
   double state_value(int i) const { return plant_.state_value(i); }
 
-  void record(double* row) const {
-    for (int i = 0; i < 4; ++i) row[i] = plant_.value(i);
-    row[4] = last_.gimbal_torque_Nm[msg::kAxis1];
-    row[5] = last_.gimbal_torque_Nm[msg::kAxis2];
-    row[6] = frame() ? single_x_[SingleRotor::Model::kAlpha] : 0.0;
-    row[7] = link_;
-    row[8] = static_cast<double>(last_.status);
+  void record(Record& r) const {
+    r.alpha_rad = plant_.value(Axis::kAlpha);
+    r.gamma_rad = plant_.value(Axis::kGamma);
+    r.beta1_rad = plant_.value(Axis::kBeta1);
+    r.beta2_rad = plant_.value(Axis::kBeta2);
+    r.M1K_Nm = last_.frame1_torque_Nm;
+    r.M2K_Nm = last_.frame2_torque_Nm;
+    r.single_rotor_alpha_rad = frame() ? single_x_[SingleRotor::Model::kAlpha] : 0.0;
+    r.link_torque_Nm = link_;
+    r.status_bits = static_cast<double>(last_.status);
   }
 
   nlohmann::json figures() const {
@@ -201,7 +202,7 @@ class TwoRotorRun {
   TwoRotorSampled sampled_;
   std::int64_t law_every_;
   analysis::LinearPredictionMeter fit_;
-  msg::ActuatorFrame last_{};
+  ActuatorFrame last_{};
   double alpha_peak_{0.0}, gamma_peak_{0.0}, single_peak_{0.0}, link_{0.0}, link_peak_{0.0};
   std::int64_t ticks_{0};
   analysis::HalfStepWindow<Plant::Dynamics, Plant::HeldInputs> window_;
@@ -211,9 +212,12 @@ struct TwoRotorTraits {
   using Scene = TwoRotorStabilizerScene;
   using Binding = TwoRotorRun;
   using Controller = tools::Controller;
-  static std::vector<std::string> columns(const Scene&) { return tools::columns(); }
+  // The law's torque limit on both frame motors.
   static hil::ActuatorLimits actuator_limits(const Scene& s) {
-    return hil::ActuatorLimits::torque_limited(s.controller.law.torque_limit_Nm);
+    msg::two_rotor_stabilizer::ActuatorFrame l =
+        hil::ActuatorLimits::unlimited<msg::two_rotor_stabilizer::ActuatorFrame>();
+    l.frame1_torque_Nm = l.frame2_torque_Nm = s.controller.law.torque_limit_Nm;
+    return hil::ActuatorLimits::of(l);
   }
   static nlohmann::json limits(const Scene& s) {
     return {{"motor_torque_limit_Nm", s.controller.law.torque_limit_Nm}};
