@@ -67,7 +67,8 @@ struct RecordedRun {
   void record() {
     const pid_t dump = spawn({"/bin/sh", "-c", "exec candump -L " + can_if() + " > " + candump});
     ASSERT_TRUE(wait_for_can_listener(-1)) << "candump never opened its socket";
-    const pid_t controller = spawn({gyrostab_bin(), "controller", scene_path, "--can-if", can_if(), "--ticks", kTicks,
+    // The controller runs until the plant's end-of-run set (docs/protocol.md): it is not told the tick count.
+    const pid_t controller = spawn({gyrostab_bin(), "controller", scene_path, "--can-if", can_if(),
                                     "--out", d / "controller"});
     ASSERT_TRUE(wait_for_can_listener(id_of("SENSOR_HUB"))) << "the controller never opened its socket";
     const Exit p = run({gyrostab_bin(), "plant", scene_path, "--can-if", can_if(), "--ticks", kTicks, "--can-log", log,
@@ -87,8 +88,9 @@ TEST(CanReplay, TheRunsLogIsWhatCandumpSawOnTheBus) {
   run_.record();
   const std::vector<std::string> ours = frame_lines(read_file(run_.log));
   const std::vector<std::string> theirs = frame_lines(read_file(run_.candump));
-  // monorail: imu + drive2 → 3 sensor frames and 2 command frames per tick.
-  EXPECT_EQ(ours.size(), 5u * std::stoul(kTicks));
+  // monorail: imu + drive2 → 3 sensor frames and 2 command frames per tick, and once more for the end of the
+  // run (the plant's end-of-run set and the controller's acknowledgement).
+  EXPECT_EQ(ours.size(), 5u * (std::stoul(kTicks) + 1));
   EXPECT_EQ(ours, theirs);
 }
 
@@ -113,14 +115,14 @@ TEST(CanReplay, GyrostabReplayFindsEveryCommandFrameBitForBitAndCatchesAFlippedB
   // The log names the map it was recorded with (table and fingerprint): a log of another map is refused (5)
   // rather than decoded wrongly.
   std::string other_map = read_file(run_.log);
-  const std::size_t map_line = other_map.find("# can-map legacy ");
+  const std::size_t map_line = other_map.find("# can-map monorail ");
   ASSERT_NE(map_line, std::string::npos) << "the log names its CAN map";
-  other_map[map_line + std::string("# can-map legacy ").size()] ^= 0x01;
+  other_map[map_line + std::string("# can-map monorail ").size()] ^= 0x01;
   const std::string remapped = run_.d / "remapped.candump";
   std::ofstream(remapped) << other_map;
   EXPECT_EQ(run({gyrostab_bin(), "replay", remapped}).code, 5);
 
-  // The log cut after the sensor set of the last tick: the controller's answer is missing ⇒ truncated (5).
+  // The log cut after the end-of-run set: the controller's acknowledgement is missing ⇒ truncated (5).
   std::string cut = read_file(run_.log);
   for (int i = 0; i < 2; ++i) cut.erase(cut.rfind('(', cut.size() - 2));
   const std::string truncated = run_.d / "truncated.candump";
@@ -132,8 +134,8 @@ TEST(CanReplay, CanplayerDrivesAListeningControllerToTheRecordedCommandFrames) {
   RecordedRun run_;
   run_.record();
   const std::string ctrl_log = run_.d / "controller.candump";
-  const pid_t controller = spawn({gyrostab_bin(), "controller", run_.scene_path, "--can-if", can_if(), "--ticks",
-                                  kTicks, "--can-log", ctrl_log, "--out", run_.d / "listening"});
+  const pid_t controller = spawn({gyrostab_bin(), "controller", run_.scene_path, "--can-if", can_if(),
+                                  "--can-log", ctrl_log, "--out", run_.d / "listening"});
   ASSERT_TRUE(wait_for_can_listener(id_of("SENSOR_HUB"))) << "the controller never opened its socket";
   // One frame per millisecond (-t -g 1: 5 ms per monorail tick) rather than the recorded 1 kHz bursts: the
   // sanitizer build in the emulated VM fell behind the bursts, lost frames to the full socket queue and went
@@ -160,7 +162,7 @@ TEST(CanReplay, CanplayerDrivesAListeningControllerToTheRecordedCommandFrames) {
   };
   const std::vector<std::string> recorded = masked(frame_lines(read_file(run_.log), true));
   const std::vector<std::string> answered = masked(frame_lines(read_file(ctrl_log), true));
-  EXPECT_EQ(recorded.size(), 2u * std::stoul(kTicks));
+  EXPECT_EQ(recorded.size(), 2u * (std::stoul(kTicks) + 1));  // with the end-of-run acknowledgement
   EXPECT_EQ(answered, recorded) << "the controller's command frames differ from the recorded ones";
   // It bound to the recorded plant's session: the log's sets are that session's, and nothing was refused.
   const nlohmann::json r = read_json(run_.d / "listening/report.json");

@@ -84,7 +84,9 @@ TEST(FrameChannel, JsonRowsReadBackBitForBit) {
         continue;
       }
       EXPECT_EQ(f.get<double>(), v[i]) << tools::label_of(s);
-      if (s.count > 1) EXPECT_EQ(j[s.name].size(), s.count);
+      if (s.count > 1) {
+        EXPECT_EQ(j[s.name].size(), s.count);
+      }
     }
   }
 }

@@ -1,6 +1,7 @@
 #include "tools/run/can_replay.hpp"
 
 #include "hil/can/link_seal.hpp"
+#include "hil/link/end_of_run.hpp"
 #include "tools/devices/registry.hpp"
 
 namespace gyrostab::tools {
@@ -70,6 +71,7 @@ int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop
   msg::AnySensorFrame sensor{};
   msg::AnyActuatorFrame out{}, recorded{};
   std::int64_t last_tick = -1;
+  bool ended = false;  // the plant's end-of-run set was seen (docs/protocol.md)
   std::int64_t ticks = 0, compared = 0, skipped = 0;
   timespec pace{};
   clock_gettime(CLOCK_MONOTONIC, &pace);
@@ -100,6 +102,18 @@ int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop
                      "%s for tick %lld is missing from the log\n", path.c_str(), r.line, static_cast<long long>(k),
                      describe_can_frame(due.front()).c_str(), static_cast<long long>(last_tick));
         return kReplayExitMismatch;
+      }
+      if (hil::is_end_of_run(sensor)) {
+        // The plant's end of the run: the controller does not step on it; it acknowledges it.
+        push_encoded(hil::end_of_run_ack(sensor, out, controller.monitor_status(), loop.tick_ns, signals));
+        last_tick = k;
+        ended = true;
+        continue;
+      }
+      if (ended) {
+        std::fprintf(stderr, "gyrostab: %s:%d: a sensor set of tick %lld after the plant's end of the run\n",
+                     path.c_str(), r.line, static_cast<long long>(k));
+        return kReplayExitBadLog;
       }
       if (req.transport.replay_real_time) {
         const std::int64_t ns = static_cast<std::int64_t>(pace.tv_nsec) + loop.tick_ns;

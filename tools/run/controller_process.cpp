@@ -32,6 +32,7 @@
 #include "hil/link/actuator_frame_check.hpp"
 #include "hil/link/frame_endpoint.hpp"
 #include "hil/link/memory_bus.hpp"
+#include "hil/link/end_of_run.hpp"
 #include "hil/link/source_watch.hpp"
 #include "hil/rt/deadline_pacer.hpp"
 #include "hil/rt/rt_setup.hpp"
@@ -181,14 +182,10 @@ template <class Transport>
 void acknowledge_end(hil::FrameEndpoint<Transport>& ep, const msg::AnySensorFrame& end, const msg::AnyActuatorFrame& last,
                      std::uint32_t monitor_status, const LoopConfig& cfg, const LinkSettings& s) {
   msg::AnyActuatorFrame ack{};
-  ack.tick = end.tick;
-  ack.time_ns = static_cast<std::int64_t>(end.tick) * cfg.tick_ns;
-  ack.sensor_tick = last.sensor_tick;
-  ack.sequence = last.sequence + 1;
-  ack.status = msg::bit(msg::FaultBit::kEndOfRun) | (monitor_status & 0xFFFFu);
   if constexpr (requires { ep.signals(); }) {
-    const auto specs = ep.signals().commands;
-    for (std::size_t i = 0; i < specs.size(); ++i) ack.signal[i] = specs[i].safe;
+    ack = hil::end_of_run_ack(end, last, monitor_status, cfg.tick_ns, ep.signals());
+  } else {
+    ack = hil::end_of_run_ack(end, last, monitor_status, cfg.tick_ns, msg::DeviceSignals{});
   }
   ep.send(ack, static_cast<std::int64_t>(end.tick) * cfg.tick_ns / 1000);
   const std::int64_t until = hil::monotonic_ns() + 2 * s.resend_ns;

@@ -33,6 +33,7 @@
 
 #include "hil/lcm/lcm_transport.hpp"
 #include "hil/link/actuator_frame_check.hpp"
+#include "hil/link/end_of_run.hpp"
 #include "hil/link/frame_endpoint.hpp"
 #include "hil/link/memory_bus.hpp"
 #include "hil/rt/deadline_pacer.hpp"
@@ -98,13 +99,7 @@ struct PlantLinkOutcome {
 template <class Transport>
 void send_end_of_run(hil::FrameEndpoint<Transport>& ep, std::int64_t tick, const LoopConfig& cfg,
                      const LinkSettings& s, PlantLinkOutcome& link, bool second_source) {
-  msg::AnySensorFrame end{};
-  end.tick = static_cast<std::uint64_t>(tick);
-  end.time_ns = tick * cfg.tick_ns;
-  end.sample_time_ns = end.time_ns;
-  end.sequence = static_cast<std::uint32_t>(tick);
-  end.status = msg::bit(msg::SensorStatusBit::kEndOfRun) |
-               (second_source ? msg::bit(msg::SensorStatusBit::kSecondSource) : 0u);
+  const msg::AnySensorFrame end = hil::end_of_run_frame(tick, cfg.tick_ns, second_source);
   link.end_tick = tick;
   if (!ep.send(end, tick * cfg.tick_ns / 1000)) return;
   const std::int64_t give_up = hil::monotonic_ns() + s.timeout_ns;

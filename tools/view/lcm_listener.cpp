@@ -154,10 +154,10 @@ bool LcmListener::channel_of(const char* name, int& direction) {
   return false;
 }
 
-const msg::DeviceSignals* LcmListener::learn(bool (*stop)(), std::int64_t& tick_ns) {
+const msg::DeviceSignals* LcmListener::learn(bool (*should_stop)(), std::int64_t& tick_ns) {
   std::vector<std::uint8_t> buf(kDatagramBytes);
   tick_ns = 0;
-  while (!stop()) {
+  while (!should_stop()) {
     pollfd p{fd_, POLLIN, 0};
     if (::poll(&p, 1, 100) <= 0) continue;
     for (;;) {

@@ -74,9 +74,9 @@ class LcmListener {
   // Opens the socket (bind, join); false with `error` set.
   bool open(const ListenerOptions& options, std::string& error);
   // Before start(): reads until a frame tells the device (unless known) and the tick length (a frame with
-  // tick > 0: time_ns / tick), or `stop()` returns true (polled every 100 ms). The frames read meanwhile are
+  // tick > 0: time_ns / tick), or `should_stop()` returns true (polled every 100 ms). The frames read meanwhile are
   // kept and shown first. nullptr when stopped.
-  const msg::DeviceSignals* learn(bool (*stop)(), std::int64_t& tick_ns);
+  const msg::DeviceSignals* learn(bool (*should_stop)(), std::int64_t& tick_ns);
   // Starts the thread: frames go to the two rings (width 1 + frame_width(device, direction) each).
   void start(LiveRing& sensor, LiveRing& actuator);
   void stop();
