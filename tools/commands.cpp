@@ -10,7 +10,7 @@
 
 #include "tools/devices/registry.hpp"
 #include "tools/run/output_dir.hpp"
-#include "tools/run/recorder.hpp"
+#include "tools/loop/recorder.hpp"
 #include "tools/run/run_mcap.hpp"
 #include "tools/run/run_modes.hpp"
 #include "tools/scene/scene_hash.hpp"

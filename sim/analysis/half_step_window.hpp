@@ -8,7 +8,7 @@
 // the capture complete (`reproduces_run`) — and once at half the step. For a method of order p the run's
 // error at each tick is estimated by Richardson's (x_h − x_{h/2}) · 2^p / (2^p − 1); the report gives its
 // largest magnitude over the window per state. Deterministic (no clock): identical run to run. The report's
-// JSON of the estimate: tools/run/error_estimate_report.hpp.
+// JSON of the estimate: tools/loop/error_estimate_report.hpp.
 // Limits: it estimates the error the integrator adds over the window (started from the run's own state),
 // not the error accumulated before it; a window that the run does not reach is reported as such.
 #pragma once

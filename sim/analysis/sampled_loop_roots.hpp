@@ -1,6 +1,6 @@
 // The roots of a sampled-data loop: a continuous linear plant driven through a zero-order hold by a discrete
 // linear law that runs at the tick and whose command takes effect `latency` later — what the closed loop
-// (tools/run/closed_loop.hpp) runs. The `_predicted` figures of the devices come from the continuous
+// (tools/loop/closed_loop.hpp) runs. The `_predicted` figures of the devices come from the continuous
 // characteristic equations; these are the roots the sampled loop actually has (the `_predicted_sampled`
 // figures and the schemas' sampled stability verdicts). Docs: docs/sampled-data.md.
 //

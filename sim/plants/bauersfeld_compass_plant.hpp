@@ -103,7 +103,7 @@ class BauersfeldCompassPlant {
   const Dynamics& dynamics() const { return model_; }
   HeldInputs held_inputs() const { return {}; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp).
+  // The runtime guard's names (tools/loop/state_guard.hpp).
   static constexpr int kGuardedStates = 6;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"a1_x", "a1_y", "a1_z", "a1_rate_x_1_s", "a1_rate_y_1_s", "a1_rate_z_1_s"};

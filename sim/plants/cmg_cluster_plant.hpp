@@ -120,7 +120,7 @@ class CmgClusterPlant {
   const Dynamics& dynamics() const { return model_; }
   const CmgClusterPlantParams& params() const { return p_; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp): ω, q and the gimbal angles and rates.
+  // The runtime guard's names (tools/loop/state_guard.hpp): ω, q and the gimbal angles and rates.
   static constexpr int kGuardedStates = 15;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"omega_x_rad_s", "omega_y_rad_s", "omega_z_rad_s", "q_x", "q_y", "q_z", "q_w",

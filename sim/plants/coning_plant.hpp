@@ -92,7 +92,7 @@ class ConingPlant {
   const Dynamics& dynamics() const { return model_; }
   const ConingPlantParams& params() const { return p_; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp).
+  // The runtime guard's names (tools/loop/state_guard.hpp).
   static constexpr int kGuardedStates = 4;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"phi_rad", "phi_rate_rad_s", "beta_rad", "beta_rate_rad_s"};

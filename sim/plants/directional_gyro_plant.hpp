@@ -26,7 +26,7 @@
 //     right, down) [rad/s]
 // Random streams of the scene seed (seeded_rng.hpp): 1 the compass.
 // Guard: |β| ≥ 89° (gimbal lock, where the precession theory's 1/cos β diverges) makes the state non-finite,
-// so the run stops there with the state named (tools/run/state_guard.hpp).
+// so the run stops there with the state named (tools/loop/state_guard.hpp).
 // Allocation-free after construction. Docs: docs/models/directional-gyro.md. Oracle:
 // tests/oracle/directional_gyro_test.cpp; the shipped scenes through tests/determinism/ and tests/alloc/.
 #pragma once
@@ -181,7 +181,7 @@ class DirectionalGyroPlant {
   const Model& model() const { return model_; }
   const Inputs& inputs() const { return model_.inputs; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp).
+  // The runtime guard's names (tools/loop/state_guard.hpp).
   static constexpr int kGuardedStates = 2;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"alpha_rad", "beta_rad"};

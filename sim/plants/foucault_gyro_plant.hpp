@@ -65,7 +65,7 @@ class FoucaultGyroPlant {
   const Dynamics& dynamics() const { return gyro_; }
   const FoucaultGyroPlantParams& params() const { return p_; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp).
+  // The runtime guard's names (tools/loop/state_guard.hpp).
   static constexpr int kGuardedStates = 2;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"angle_rad", "rate_rad_s"};

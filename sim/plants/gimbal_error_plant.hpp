@@ -88,7 +88,7 @@ class GimbalErrorPlant {
   const Dynamics& dynamics() const { return model_; }
   const GimbalErrorPlantParams& params() const { return p_; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp).
+  // The runtime guard's names (tools/loop/state_guard.hpp).
   static constexpr int kGuardedStates = 4;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"q_WF_x", "q_WF_y", "q_WF_z", "q_WF_w"};

@@ -206,7 +206,7 @@ class GyroPendulumPlant {
   const Magnus& magnus_model() const { return magnus_; }
   MagnusInputs magnus_inputs() const { return {magnus_.reference(), magnus_.M1, magnus_.M2}; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp): the Magnus state, then the rigid body's (only the
+  // The runtime guard's names (tools/loop/state_guard.hpp): the Magnus state, then the rigid body's (only the
   // scene's model advances; the other stays at its start).
   static constexpr int kGuardedStates = Magnus::kStateSize + Body::kStateSize;
   static const char* state_name(int i) {

@@ -135,7 +135,7 @@ class GyroVerticalPlant {
   const Model& model() const { return model_; }
   const Inputs& inputs() const { return model_.inputs; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp).
+  // The runtime guard's names (tools/loop/state_guard.hpp).
   static constexpr int kGuardedStates = 4;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"alpha_rad", "beta_rad", "alpha_rate_rad_s", "beta_rate_rad_s"};

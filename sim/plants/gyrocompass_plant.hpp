@@ -125,7 +125,7 @@ class GyrocompassPlant {
   const Model& model() const { return model_; }
   const Inputs& inputs() const { return model_.inputs; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp).
+  // The runtime guard's names (tools/loop/state_guard.hpp).
   static constexpr int kGuardedStates = 6;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"alpha_rad",       "beta_rad",  "alpha_rate_rad_s",

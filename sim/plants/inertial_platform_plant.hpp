@@ -273,7 +273,7 @@ class InertialPlatformPlant {
   const Inputs& inputs() const { return model_.inputs; }
 
   static constexpr const std::array<const char*, M::kStateSize>& state_names() { return Axes::kStateNames; }
-  // The runtime guard's names (tools/run/state_guard.hpp).
+  // The runtime guard's names (tools/loop/state_guard.hpp).
   static constexpr int kGuardedStates = M::kStateSize;
   static const char* state_name(int i) { return Axes::kStateNames[static_cast<std::size_t>(i)]; }
   double state_value(int i) const { return x_[i]; }

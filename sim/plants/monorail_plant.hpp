@@ -121,7 +121,7 @@ class MonorailPlant {
   const Dynamics& dynamics() const { return car_; }
   const MonorailPlantParams& params() const { return p_; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp).
+  // The runtime guard's names (tools/loop/state_guard.hpp).
   static constexpr int kGuardedStates = 4;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"tilt_rad", "case_angle_rad", "tilt_rate_rad_s", "case_rate_rad_s"};

@@ -131,7 +131,7 @@ class ServoGyroPlant {
   const Dynamics& dynamics() const { return gyro_; }
   const ServoGyroPlantParams& params() const { return p_; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp).
+  // The runtime guard's names (tools/loop/state_guard.hpp).
   static constexpr int kGuardedStates = 4;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"alpha_rad", "beta_rad", "alpha_rate_rad_s", "beta_rate_rad_s"};

@@ -137,7 +137,7 @@ class ShipRollDamperPlant {
   const Dynamics& dynamics() const { return ship_; }
   const ShipRollDamperPlantParams& params() const { return p_; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp): the stabilized ship, then the locked reference.
+  // The runtime guard's names (tools/loop/state_guard.hpp): the stabilized ship, then the locked reference.
   static constexpr int kGuardedStates = 8;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"roll_rad",           "precession_rad",           "roll_rate_rad_s",

@@ -70,7 +70,7 @@ class UGyroPlant {
   const Dynamics& dynamics() const { return gyro_; }
   const UGyroPlantParams& params() const { return p_; }
 
-  // The runtime guard's names (tools/run/state_guard.hpp).
+  // The runtime guard's names (tools/loop/state_guard.hpp).
   static constexpr int kGuardedStates = 3;
   static const char* state_name(int i) {
     constexpr const char* n[] = {"beta_rad", "beta_rate_rad_s", "gamma_rad"};

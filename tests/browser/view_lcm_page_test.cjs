@@ -33,7 +33,7 @@ function sensorFrames(file) {
     const d = b.subarray(at + 28 + chLen, at + 28 + chLen + dataLen);
     at += 28 + chLen + dataLen;
     if (!channel.startsWith("GYROSTAB_SENSOR")) continue;
-    const n = (d.length - 80) / 8;
+    const n = (d.length - 88) / 8;
     const tick = Number(d.readBigInt64BE(8));
     // The row as the viewer pushes it after t_s: time_ns, sample_time_ns, sequence, status, the signals.
     out.set(tick, [Number(d.readBigInt64BE(16)), Number(d.readBigInt64BE(24)), d.readUInt32BE(32), d.readUInt32BE(36),
@@ -114,10 +114,10 @@ async function inside(gyrostab, src, work) {
     }
     check(JSON.stringify(view.labels) === JSON.stringify(expected), `a chart per signal of the table (${view.labels.length})`);
     const has = (t, l) => view.labels.some(([c, x]) => c === t && x === l);
-    check(has("/gyrostab/sensor", "carrier_angle_rad[0] [rad]") && has("/gyrostab/sensor", "gimbal_angle_rad[1] [rad]") &&
-          has("/gyrostab/actuator", "gimbal_torque_Nm[1] [N m]") && has("/gyrostab/actuator", "precession_brake"),
-          "the ship's roll (carrier angle 0), precession (gimbal angle 1) and torque are charted with their units");
-    const torque = view.meta.channels[1].signals.find((s) => s.label === "gimbal_torque_Nm[1]");
+    check(has("/gyrostab/sensor", "roll_rad [rad]") && has("/gyrostab/sensor", "precession_angle_rad [rad]") &&
+          has("/gyrostab/actuator", "precession_torque_Nm [N m]") && has("/gyrostab/actuator", "precession_brake"),
+          "the ship's roll, precession and torque are charted with their units");
+    const torque = view.meta.channels[1].signals.find((s) => s.label === "precession_torque_Nm");
     check(torque && torque.min === -1e7 && torque.max === 1e7 && torque.symbol && torque.description,
           "the torque's range, symbol and description come from the table");
 
@@ -144,7 +144,7 @@ async function inside(gyrostab, src, work) {
     check(view.buckets.length === want.size && bad === "",
           `the sensor frames' buckets equal the bus log's frames, bit for bit (${view.buckets.length} buckets)` + (bad ? ": " + bad : ""));
     check(view.safe === "running" && view.status.includes("status word"), `the controller's status from the actuator frames: ${view.safe}`);
-    check(view.auth.includes("NOT authenticated") && view.link.includes("legacy") && view.link.includes("0x"),
+    check(view.auth.includes("NOT authenticated") && view.link.includes("ship_roll_damper") && view.link.includes("0x"),
           `the bus panel: ${view.auth}; ${view.link.slice(0, 120)}`);
     check(view.header.includes("NOT authenticated") && view.header.includes("status 0x"), `the actuator header line: ${view.header}`);
   } finally {

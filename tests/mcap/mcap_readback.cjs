@@ -94,8 +94,8 @@ function readBusLog(path) {
     const sensor = channel.startsWith("GYROSTAB_SENSOR"), actuator = channel.startsWith("GYROSTAB_ACTUATOR");
     if (!sensor && !actuator) continue;
     // fingerprint, tick, time_ns, sample_time_ns | sensor_tick (int64), sequence, status (int32), the doubles,
-    // sim_time_us and the envelope (5 x int64).
-    const n = (data.length - 8 - 32 - 40) / 8;
+    // sim_time_us, the scene hash and the envelope (6 x int64: docs/protocol.md).
+    const n = (data.length - 8 - 32 - 48) / 8;
     const f = {
       tick: Number(data.readBigInt64BE(8)),
       time_ns: Number(data.readBigInt64BE(16)),

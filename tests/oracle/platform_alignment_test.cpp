@@ -1,6 +1,6 @@
 // Oracle tests of platform alignment (sim/models/platform_alignment.hpp, sim/plants/platform_alignment_plant.hpp,
 // firmware/control/platform_alignment_loops.hpp) against Magnus §16.5, (16.52) and the closed forms of the
-// linearised loop (sim/oracles/platform_alignment_closed_forms.hpp, docs/models/platform-alignment.md):
+// linearised loop (tools/devices/platform_alignment/platform_alignment_closed_forms.hpp, docs/models/platform-alignment.md):
 //   (a) (16.52): the Earth rate on the east axis of a level platform with heading error ψ is −ω^E cosφ sinψ,
 //       exactly for the exact kinematics (4.7e-8 rad/s for 1 mrad at 50°), and a platform not torqued about
 //       its east axis tilts at that rate;
@@ -24,7 +24,7 @@
 
 #include "firmware/control/platform_alignment_loops.hpp"
 #include "sim/dynamics/rk4.hpp"
-#include "sim/oracles/platform_alignment_closed_forms.hpp"
+#include "tools/devices/platform_alignment/platform_alignment_closed_forms.hpp"
 #include "sim/plants/platform_alignment_plant.hpp"
 #include "tools/commands.hpp"
 #include "tools/devices/device.hpp"

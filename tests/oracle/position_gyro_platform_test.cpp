@@ -41,7 +41,7 @@
 #include "sim/analysis/extrema_meter.hpp"
 #include "sim/dynamics/eigenvalues.hpp"
 #include "sim/dynamics/rk4.hpp"
-#include "sim/oracles/position_gyro_platform_roots.hpp"
+#include "tools/devices/position_gyro_platform/position_gyro_platform_roots.hpp"
 #include "tools/commands.hpp"
 
 namespace gyrostab {

@@ -14,7 +14,7 @@
 #include "tools/accuracy/oscillator_problem.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_problem.hpp"
 #include "tools/devices/ship_roll_damper/ship_problem.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 #include "tools/commands.hpp"
 
 namespace gyrostab::tools::accuracy {

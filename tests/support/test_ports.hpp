@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "firmware/msg/sensor_frame.hpp"
-#include "tools/run/controller_port.hpp"
+#include "tools/loop/controller_port.hpp"
 
 namespace gyrostab::testing {
 

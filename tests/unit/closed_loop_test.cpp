@@ -1,7 +1,7 @@
 // The in-process loop's timing contract: the command computed from the sensor frame of tick k is applied by
 // the plant at exactly tick k + latency (docs/architecture.md, the loop), for latency 0, 1 and 3; before that
 // the device's initial command holds.
-#include "tools/run/closed_loop.hpp"
+#include "tools/loop/closed_loop.hpp"
 
 #include "tests/support/test_ports.hpp"
 

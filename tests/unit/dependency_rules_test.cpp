@@ -1,5 +1,9 @@
 // The dependency rules of docs/architecture.md, checked on the source tree: firmware/ includes none of sim/,
-// hil/, tools/; sim/ includes neither tools/ nor hil/ nor a JSON library; the accuracy study's framework
+// hil/, tools/; sim/ includes neither tools/ nor hil/ nor a JSON library, and of firmware/ only the messages
+// (firmware/msg/: the contract, not a law); inside tools/, the loop and the device interface (tools/loop/,
+// tools/devices/*.hpp) lie below both the devices and the run modes: no device includes a run mode
+// (tools/run/), the loop includes neither, and a run mode reaches a device only through its interface (never a
+// device's folder); the accuracy study's framework
 // (tools/accuracy/) includes no device; and the project stands alone — no file cites the private library it
 // was written from, and no comment cites an issue number.
 #include <gtest/gtest.h>
@@ -105,6 +109,34 @@ TEST(DependencyRules, FirmwareIncludesOnlyFirmware) {
 TEST(DependencyRules, SimIncludesNeitherToolsNorHilNorJson) {
   const auto bad =
       matches(files_under("sim", kCode), includes_any_of({"tools/", "hil/", "nlohmann/"}));
+  EXPECT_TRUE(bad.empty()) << bad.front();
+}
+
+TEST(DependencyRules, SimTakesOnlyTheMessagesFromFirmware) {
+  const auto bad = matches(files_under("sim", kCode), [](const std::string& line) {
+    const std::string path = included_path(line);
+    return path.rfind("firmware/", 0) == 0 && path.rfind("firmware/msg/", 0) != 0;
+  });
+  EXPECT_TRUE(bad.empty()) << bad.front();
+}
+
+TEST(DependencyRules, NoDeviceIncludesARunMode) {
+  const auto bad = matches(files_under("tools/devices", kCode), includes_any_of({"tools/run/"}));
+  EXPECT_TRUE(bad.empty()) << bad.front();
+}
+
+TEST(DependencyRules, TheLoopIncludesNeitherRunModesNorDevices) {
+  const auto bad = matches(files_under("tools/loop", kCode), includes_any_of({"tools/run/", "tools/devices/"}));
+  EXPECT_TRUE(bad.empty()) << bad.front();
+}
+
+TEST(DependencyRules, RunModesReachDevicesOnlyThroughTheirInterface) {
+  // tools/devices/device.hpp, registry.hpp, device_scene_of.hpp: yes; tools/devices/<device>/...: no.
+  const auto bad = matches(files_under("tools/run", kCode), [](const std::string& line) {
+    const std::string path = included_path(line);
+    return path.rfind("tools/devices/", 0) == 0 && path.find('/', 14) != std::string::npos &&
+           path.find('/', 14) < path.find_first_of("\">");
+  });
   EXPECT_TRUE(bad.empty()) << bad.front();
 }
 

@@ -1,4 +1,4 @@
-// `[output] signals`: a run records only the columns its scene names (tools/run/recorder.hpp); an unknown
+// `[output] signals`: a run records only the columns its scene names (tools/loop/recorder.hpp); an unknown
 // name is refused before running with the list of valid ones (by `gyrostab check` too).
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tools/commands.hpp"
-#include "tools/run/recorder.hpp"
+#include "tools/loop/recorder.hpp"
 
 namespace gyrostab {
 namespace output_signals_test {

@@ -1,7 +1,7 @@
-// The closed loop's runtime guard (tools/run/state_guard.hpp): a run whose plant state goes non-finite stops at
+// The closed loop's runtime guard (tools/loop/state_guard.hpp): a run whose plant state goes non-finite stops at
 // that tick and names the component that went first with its last finite value; a device that does not name
 // its state still stops at the tick.
-#include "tools/run/closed_loop.hpp"
+#include "tools/loop/closed_loop.hpp"
 
 #include "tests/support/test_ports.hpp"
 

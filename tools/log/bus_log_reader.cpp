@@ -3,6 +3,7 @@
 #include "tools/signals/device_signals.hpp"
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <sys/stat.h>
@@ -100,6 +101,28 @@ std::string BusLogReader::tick_name() const {
   return "tick " + std::to_string(ticks_);
 }
 
+// The event at `pos` (header `h` already checked, its channel and data within the file), read byte for byte
+// into the structure LCM's reader returns (malloc'ed: lcm_eventlog_free_event frees it). nullptr on a read error.
+lcm_eventlog_event_t* read_event_after_lcm_refused(std::FILE* f, std::int64_t pos, const std::uint8_t* h,
+                                                   std::int32_t channellen, std::int32_t datalen) {
+  if (fseeko(f, static_cast<off_t>(pos + kHeaderBytes), SEEK_SET) != 0) return nullptr;
+  auto* ev = static_cast<lcm_eventlog_event_t*>(std::calloc(1, sizeof(lcm_eventlog_event_t)));
+  if (ev == nullptr) return nullptr;
+  ev->eventnum = static_cast<std::int64_t>(be64(h + 4));
+  ev->timestamp = static_cast<std::int64_t>(be64(h + 12));
+  ev->channellen = channellen;
+  ev->datalen = datalen;
+  ev->channel = static_cast<char*>(std::calloc(static_cast<std::size_t>(channellen) + 1, 1));
+  ev->data = std::malloc(datalen > 0 ? static_cast<std::size_t>(datalen) : 1);
+  if (ev->channel == nullptr || ev->data == nullptr ||
+      std::fread(ev->channel, 1, static_cast<std::size_t>(channellen), f) != static_cast<std::size_t>(channellen) ||
+      std::fread(ev->data, 1, static_cast<std::size_t>(datalen), f) != static_cast<std::size_t>(datalen)) {
+    lcm_eventlog_free_event(ev);
+    return nullptr;
+  }
+  return ev;
+}
+
 // One event, its envelope checked before LCM reads it; kEnd here means "at the end of the file, between
 // events" (the caller decides whether that is allowed).
 ReadStatus BusLogReader::read_event(Event& e) {
@@ -150,6 +173,12 @@ ReadStatus BusLogReader::read_event(Event& e) {
     return fail(ReadStatus::kCorrupt, pos, std::string("cannot seek: ") + std::strerror(errno));
   }
   e.ev.reset(lcm_eventlog_read_next_event(log_));
+  if (!e.ev) {
+    // LCM 1.3 also refuses an event whose successor does not start with the sync word ("Invalid header after
+    // log data"): the event itself, whose header we have checked, is whole — read it as LCM would have, so that
+    // everything before damaged bytes is still read and the damage is reported where it lies.
+    e.ev.reset(read_event_after_lcm_refused(f, pos, h, channellen, datalen));
+  }
   if (!e.ev || e.ev->channellen != channellen || e.ev->datalen != datalen) {
     return fail(ReadStatus::kCorrupt, pos, "LCM's log reader did not read " + which + " as its header declares");
   }

@@ -11,7 +11,7 @@
 
 #include "tools/log/bus_log_writer.hpp"
 #include "tools/log/stop_signal.hpp"
-#include "tools/run/closed_loop.hpp"
+#include "tools/loop/closed_loop.hpp"
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {

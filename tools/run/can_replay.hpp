@@ -28,7 +28,7 @@
 #include "hil/can/frame_codec.hpp"
 #include "tools/log/frame_diff.hpp"
 #include "tools/run/can_link_setup.hpp"
-#include "tools/run/controller_port.hpp"
+#include "tools/loop/controller_port.hpp"
 #include "tools/run/replay_session.hpp"
 #include "tools/run/run_output.hpp"
 

@@ -39,7 +39,7 @@
 #include "tools/devices/registry.hpp"
 #include "tools/log/stop_signal.hpp"
 #include "tools/run/can_link_setup.hpp"
-#include "tools/run/controller_port.hpp"
+#include "tools/loop/controller_port.hpp"
 #include "tools/run/link_identity.hpp"
 #include "tools/run/link_report.hpp"
 #include "tools/run/link_settings.hpp"

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "tools/run/recorder.hpp"
+#include "tools/loop/recorder.hpp"
 
 namespace gyrostab::tools {
 

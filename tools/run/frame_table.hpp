@@ -12,7 +12,7 @@
 
 #include "firmware/msg/signal_spec.hpp"
 #include "tools/log/frame_channel.hpp"
-#include "tools/run/closed_loop.hpp"
+#include "tools/loop/closed_loop.hpp"
 
 namespace gyrostab::tools {
 

@@ -9,7 +9,7 @@
 
 #include "tools/devices/registry.hpp"
 #include "tools/run/bus_log_sink.hpp"
-#include "tools/run/closed_loop.hpp"
+#include "tools/loop/closed_loop.hpp"
 #include "tools/run/frame_table.hpp"
 #include "tools/run/run_mcap.hpp"
 #include "tools/run/run_modes.hpp"

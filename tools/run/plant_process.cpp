@@ -43,7 +43,7 @@
 #include "tools/log/stop_signal.hpp"
 #include "tools/run/bus_log_sink.hpp"
 #include "tools/run/can_link_setup.hpp"
-#include "tools/run/closed_loop.hpp"
+#include "tools/loop/closed_loop.hpp"
 #include "tools/run/command_wait.hpp"
 #include "tools/run/frame_table.hpp"
 #include "tools/run/link_identity.hpp"

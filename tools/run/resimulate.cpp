@@ -14,7 +14,7 @@
 #include "hil/can/candump_log.hpp"
 #include "tools/devices/registry.hpp"
 #include "tools/log/frame_diff.hpp"
-#include "tools/run/closed_loop.hpp"
+#include "tools/loop/closed_loop.hpp"
 #include "tools/run/replay_session.hpp"
 #include "tools/run/run_modes.hpp"
 #include "tools/run/run_output.hpp"

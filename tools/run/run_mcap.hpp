@@ -21,7 +21,7 @@
 #include "tools/log/mcap_writer.hpp"
 #include "tools/log/signal_channel.hpp"
 #include "tools/run/frame_table.hpp"
-#include "tools/run/recorder.hpp"
+#include "tools/loop/recorder.hpp"
 #include "tools/run/run_output.hpp"
 #include "tools/scene/loop_config.hpp"
 

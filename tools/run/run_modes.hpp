@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "tools/devices/device.hpp"
-#include "tools/run/loop_outcome.hpp"
-#include "tools/run/recorder.hpp"
+#include "tools/loop/loop_outcome.hpp"
+#include "tools/loop/recorder.hpp"
 #include "tools/run/run_output.hpp"
 
 namespace gyrostab::tools {

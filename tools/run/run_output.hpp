@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "tools/run/loop_outcome.hpp"
-#include "tools/run/recorder.hpp"
+#include "tools/loop/loop_outcome.hpp"
+#include "tools/loop/recorder.hpp"
 #include "tools/run/run_role.hpp"
 #include "tools/scene/loop_config.hpp"
 

@@ -15,7 +15,7 @@
 #include "firmware/msg/fault_bits.hpp"
 #include "hil/link/actuator_frame_check.hpp"
 #include "hil/target/target_endpoint.hpp"
-#include "tools/run/controller_port.hpp"
+#include "tools/loop/controller_port.hpp"
 #include "tools/run/target_link_setup.hpp"
 
 namespace gyrostab::tools {

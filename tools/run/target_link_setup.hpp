@@ -19,7 +19,7 @@
 #include "tools/build_paths.hpp"
 #include "tools/devices/device.hpp"
 #include "tools/devices/registry.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 #include "tools/run/link_identity.hpp"
 #include "tools/run/link_settings.hpp"
 #include "tools/run/run_output.hpp"

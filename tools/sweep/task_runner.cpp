@@ -4,8 +4,8 @@
 
 #include "tools/commands.hpp"
 #include "tools/devices/device.hpp"
-#include "tools/run/closed_loop.hpp"
-#include "tools/run/state_guard.hpp"
+#include "tools/loop/closed_loop.hpp"
+#include "tools/loop/state_guard.hpp"
 #include "tools/sweep/task_record.hpp"
 
 namespace gyrostab::tools::sweep {

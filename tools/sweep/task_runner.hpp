@@ -1,6 +1,6 @@
 // Runs one task in this process, the way `gyrostab run` runs a scene in process (tools/run/in_process.cpp):
 // the task's scene text through the scene reader and its device's checks (every check `run` and `check`
-// make), then the plant and the firmware controller in the closed loop (tools/run/closed_loop.hpp) — without a
+// make), then the plant and the firmware controller in the closed loop (tools/loop/closed_loop.hpp) — without a
 // recorder, a CSV or plots. Each task owns its scene, plant and controller, so tasks run on many threads.
 #pragma once
 

@@ -4,8 +4,8 @@
 // so a run with a view computes the same bits as one without (tests/determinism/view_determinism_test.cpp).
 #pragma once
 
-#include "tools/run/closed_loop.hpp"
-#include "tools/run/controller_port.hpp"
+#include "tools/loop/closed_loop.hpp"
+#include "tools/loop/controller_port.hpp"
 #include "tools/view/live_ring.hpp"
 
 namespace gyrostab::tools::view {

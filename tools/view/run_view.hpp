@@ -9,7 +9,7 @@
 #include <string>
 
 #include "tools/devices/device.hpp"
-#include "tools/run/closed_loop.hpp"
+#include "tools/loop/closed_loop.hpp"
 #include "tools/run/run_output.hpp"
 #include "tools/view/live_feed.hpp"
 #include "tools/view/view_server.hpp"

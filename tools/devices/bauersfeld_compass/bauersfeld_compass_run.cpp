@@ -17,7 +17,7 @@
 #include "sim/oracles/bauersfeld_compass.hpp"
 #include "tools/devices/bauersfeld_compass/bauersfeld_compass_scene.hpp"
 #include "tools/devices/device_scene_of.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -12,7 +12,7 @@
 #include "tools/devices/bauersfeld_compass/bauersfeld_compass_scene.hpp"
 #include "tools/devices/vehicle_instruments/gyro_frame_checks.hpp"
 #include "tools/devices/vehicle_instruments/vehicle_motion_schema.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {

@@ -19,7 +19,7 @@
 #include "sim/analysis/planar_mode_fit.hpp"
 #include "tools/devices/cmg_cluster/cmg_cluster_sampled.hpp"
 #include "tools/devices/device_scene_of.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -17,7 +17,7 @@
 #include "sim/oracles/coning_closed_forms.hpp"
 #include "tools/devices/coning/coning_scene.hpp"
 #include "tools/devices/device_scene_of.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -8,7 +8,7 @@
 #include "sim/dynamics/step_validation.hpp"
 #include "tools/devices/base_motion/base_motion_schema.hpp"
 #include "tools/devices/coning/coning_scene.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {

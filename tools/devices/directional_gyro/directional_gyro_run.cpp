@@ -19,7 +19,7 @@
 #include "tools/devices/directional_gyro/directional_gyro_scene.hpp"
 #include "tools/devices/directional_gyro/directional_gyro_sampled.hpp"
 #include "tools/devices/vehicle_instruments/segments_json.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -7,7 +7,7 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "tools/devices/directional_gyro/directional_gyro_scene.hpp"
 #include "tools/devices/vehicle_instruments/vehicle_motion_schema.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {

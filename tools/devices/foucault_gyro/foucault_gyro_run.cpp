@@ -14,7 +14,7 @@
 #include "sim/analysis/half_step_window.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/foucault_gyro/foucault_gyro_scene.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -16,7 +16,7 @@
 #include "sim/oracles/gimbal_error_closed_forms.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/gimbal_error/gimbal_error_scene.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

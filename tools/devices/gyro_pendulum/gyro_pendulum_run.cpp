@@ -22,7 +22,7 @@
 #include "sim/oracles/schuler_tuning.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/gyro_pendulum/gyro_pendulum_scene.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -11,7 +11,7 @@
 #include "sim/oracles/schuler_tuning.hpp"
 #include "tools/devices/gyro_pendulum/gyro_pendulum_scene.hpp"
 #include "tools/devices/vehicle_instruments/vehicle_motion_schema.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {

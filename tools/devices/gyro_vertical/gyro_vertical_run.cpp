@@ -31,7 +31,7 @@
 #include "tools/devices/gyro_vertical/gyro_vertical_sampled.hpp"
 #include "tools/devices/gyro_vertical/gyro_vertical_scene.hpp"
 #include "tools/devices/vehicle_instruments/segments_json.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

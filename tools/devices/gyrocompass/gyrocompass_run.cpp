@@ -28,7 +28,7 @@
 #include "tools/devices/gyrocompass/gyrocompass_sampled.hpp"
 #include "tools/devices/gyrocompass/gyrocompass_scene.hpp"
 #include "tools/devices/vehicle_instruments/segments_json.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -26,7 +26,7 @@
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/inertial_platform/inertial_platform_sampled.hpp"
 #include "tools/devices/inertial_platform/inertial_platform_scene.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -13,7 +13,7 @@
 #include "sim/models/inertial_platform_stability.hpp"
 #include "tools/devices/inertial_platform/inertial_platform_scene.hpp"
 #include "tools/devices/vehicle_instruments/vehicle_motion_schema.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {

@@ -23,7 +23,7 @@
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/monorail/monorail_sampled.hpp"
 #include "tools/devices/monorail/monorail_scene.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

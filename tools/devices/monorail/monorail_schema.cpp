@@ -11,7 +11,7 @@
 #include "tools/devices/monorail/monorail_curve.hpp"
 #include "tools/devices/monorail/monorail_sampled.hpp"
 #include "tools/devices/monorail/monorail_scene.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 #include "tools/scene/read_rk4_scene.hpp"
 #include "tools/scene/schema.hpp"
 

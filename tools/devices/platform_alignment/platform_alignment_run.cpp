@@ -1,5 +1,5 @@
 // What a platform alignment run reports: the plant of sim/plants/platform_alignment_plant.hpp with its meters
-// beside the closed forms of sim/oracles/platform_alignment_closed_forms.hpp — when the azimuth phase began
+// beside the closed forms of tools/devices/platform_alignment/platform_alignment_closed_forms.hpp — when the azimuth phase began
 // (the zenith torquer leaving its Earth-rate compensation), the alignment time (the platform within the
 // scene's tolerances from then to the end) against the loop's prediction, the azimuth loop's time constant
 // measured on the heading error against the cubic's slow root and the 1/cosφ law, the misalignment at the
@@ -20,7 +20,7 @@
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/platform_alignment/platform_alignment_sampled.hpp"
 #include "tools/devices/platform_alignment/platform_alignment_scene.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

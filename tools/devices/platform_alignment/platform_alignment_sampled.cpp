@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "firmware/control/platform_alignment_loops.hpp"
-#include "sim/oracles/platform_alignment_closed_forms.hpp"
+#include "tools/devices/platform_alignment/platform_alignment_closed_forms.hpp"
 
 namespace gyrostab::tools {
 

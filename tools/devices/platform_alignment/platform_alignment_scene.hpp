@@ -11,7 +11,7 @@
 #include "firmware/app/platform_alignment_controller.hpp"
 #include "sim/plants/platform_alignment_plant.hpp"
 #include "tools/devices/device.hpp"
-#include "sim/oracles/platform_alignment_closed_forms.hpp"
+#include "tools/devices/platform_alignment/platform_alignment_closed_forms.hpp"
 #include "tools/scene/loop_config.hpp"
 
 namespace gyrostab::tools {
@@ -41,7 +41,7 @@ struct PlatformAlignmentScene {
 std::unique_ptr<DeviceScene> read_platform_alignment(SceneReader& r);
 SceneDoc platform_alignment_doc();
 
-// The alignment-time model (sim/oracles/platform_alignment_closed_forms.hpp) of the scene's loop, platform,
+// The alignment-time model (tools/devices/platform_alignment/platform_alignment_closed_forms.hpp) of the scene's loop, platform,
 // initial heading error, tolerance and azimuth-phase start.
 oracles::AlignmentTimeInputs alignment_time_inputs(const PlatformAlignmentScene& s);
 

@@ -2,7 +2,7 @@
 // the source of the reader, its messages and docs/scenes.md. The latitude limit: the azimuth signal (16.52)
 // is ∝ cosφ, so the azimuth loop's time constant and the heading error a gyro drift leaves both grow as
 // 1/cosφ; the scene is refused beyond the latitude at which the alignment would outlast `[alignment]
-// max_time_s` (sim/oracles/platform_alignment_closed_forms.hpp).
+// max_time_s` (tools/devices/platform_alignment/platform_alignment_closed_forms.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,7 +12,7 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "tools/devices/platform_alignment/platform_alignment_scene.hpp"
 #include "tools/devices/vehicle_instruments/gyro_frame_checks.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {

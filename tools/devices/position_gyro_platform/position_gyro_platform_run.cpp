@@ -20,11 +20,11 @@
 #include "sim/analysis/half_step_window.hpp"
 #include "sim/analysis/linear_prediction_fit.hpp"
 #include "sim/analysis/sampled_loop_roots.hpp"
-#include "sim/oracles/position_gyro_platform_roots.hpp"
+#include "tools/devices/position_gyro_platform/position_gyro_platform_roots.hpp"
 #include "gyrostab_signals/position_gyro_platform_outputs.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/position_gyro_platform/position_gyro_platform_scene.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

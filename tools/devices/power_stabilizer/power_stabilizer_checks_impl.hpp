@@ -13,7 +13,7 @@
 #include "sim/dynamics/step_validation.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_checks.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_sampled.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 
 namespace gyrostab::tools::power_stabilizer_checks {
 

@@ -1,12 +1,12 @@
 // The power stabilizer in the precession model P0 (10.19)-(10.22). In process, the full model runs the scene
-// first with α, β traced, and P0 is then compared with it tick by tick (tools/run/model_comparison.hpp); a
+// first with α, β traced, and P0 is then compared with it tick by tick (tools/loop/model_comparison.hpp); a
 // plant process or a re-simulation runs P0 alone.
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/dynamics/gyroscopic_exponential.hpp"
 #include "sim/dynamics/rk4.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_run.hpp"
-#include "tools/run/closed_loop.hpp"
-#include "tools/run/model_comparison.hpp"
+#include "tools/loop/closed_loop.hpp"
+#include "tools/loop/model_comparison.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -29,8 +29,8 @@
 #include "tools/devices/power_stabilizer/power_stabilizer_checks.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_sampled.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_scene.hpp"
-#include "tools/run/error_estimate_report.hpp"
-#include "tools/run/periodic_drift_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
+#include "tools/loop/periodic_drift_report.hpp"
 
 namespace gyrostab::tools {
 

@@ -10,7 +10,7 @@
 #include "tools/devices/power_stabilizer/power_stabilizer_checks.hpp"
 #include "tools/devices/base_motion/base_motion_schema.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_scene.hpp"
-#include "tools/run/recorder.hpp"
+#include "tools/loop/recorder.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {

@@ -16,7 +16,7 @@
 #include "tools/accuracy/study_entry.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_problem.hpp"
 #include "tools/devices/power_stabilizer/power_stabilizer_scene.hpp"
-#include "tools/run/closed_loop.hpp"
+#include "tools/loop/closed_loop.hpp"
 
 namespace gyrostab::tools {
 namespace {

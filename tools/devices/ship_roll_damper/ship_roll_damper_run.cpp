@@ -18,7 +18,7 @@
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/ship_roll_damper/ship_roll_damper_sampled.hpp"
 #include "tools/devices/ship_roll_damper/ship_roll_damper_scene.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "tools/devices/ship_roll_damper/ship_roll_damper_scene.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 #include "tools/scene/schema.hpp"
 
 namespace gyrostab::tools {

@@ -10,7 +10,7 @@
 #include "tools/accuracy/accuracy_study.hpp"
 #include "tools/accuracy/study_entry.hpp"
 #include "tools/devices/ship_roll_damper/ship_problem.hpp"
-#include "tools/run/closed_loop.hpp"
+#include "tools/loop/closed_loop.hpp"
 
 namespace gyrostab::tools {
 namespace {

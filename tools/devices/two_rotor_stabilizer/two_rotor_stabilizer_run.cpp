@@ -21,7 +21,7 @@
 #include "tools/devices/two_rotor_stabilizer/two_rotor_sampled.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/two_rotor_stabilizer/two_rotor_stabilizer_scene.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -7,7 +7,7 @@
 #include "sim/dynamics/step_validation.hpp"
 #include "tools/devices/two_rotor_stabilizer/two_rotor_stabilizer_scene.hpp"
 #include "tools/devices/two_rotor_stabilizer/two_rotor_sampled.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 #include "tools/scene/read_rk4_scene.hpp"
 #include "tools/scene/schema.hpp"
 

@@ -18,7 +18,7 @@
 #include "sim/oracles/u_gyro_output.hpp"
 #include "tools/devices/device_scene_of.hpp"
 #include "tools/devices/u_gyro/u_gyro_scene.hpp"
-#include "tools/run/error_estimate_report.hpp"
+#include "tools/loop/error_estimate_report.hpp"
 
 namespace gyrostab::tools {
 namespace {

@@ -7,7 +7,7 @@
 #include "firmware/platform/posix/monotonic_clock.hpp"
 #include "sim/dynamics/step_validation.hpp"
 #include "tools/devices/u_gyro/u_gyro_scene.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 #include "tools/scene/read_rk4_scene.hpp"
 #include "tools/scene/schema.hpp"
 

@@ -1,10 +1,10 @@
 // How a closed-loop run ended, for every run mode: ticks run, divergence (where, for a plant that names its
-// state: tools/run/state_guard.hpp), wall time, and whether a tick sink stopped it.
+// state: tools/loop/state_guard.hpp), wall time, and whether a tick sink stopped it.
 #pragma once
 
 #include <cstdint>
 
-#include "tools/run/state_guard.hpp"
+#include "tools/loop/state_guard.hpp"
 
 namespace gyrostab::tools {
 

@@ -1,4 +1,4 @@
-#include "tools/run/recorder.hpp"
+#include "tools/loop/recorder.hpp"
 
 #include <algorithm>
 #include <cstdint>

@@ -16,10 +16,10 @@
 #include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/sensor_frame.hpp"
 #include "sim/plants/sensor_frame_header.hpp"
-#include "tools/run/controller_port.hpp"
-#include "tools/run/loop_outcome.hpp"
-#include "tools/run/plant_port.hpp"
-#include "tools/run/recorder.hpp"
+#include "tools/loop/controller_port.hpp"
+#include "tools/loop/loop_outcome.hpp"
+#include "tools/loop/plant_port.hpp"
+#include "tools/loop/recorder.hpp"
 #include "tools/scene/loop_config.hpp"
 
 namespace gyrostab::tools {

@@ -1,4 +1,4 @@
-#include "tools/run/closed_loop.hpp"
+#include "tools/loop/closed_loop.hpp"
 
 #include <unistd.h>
 

@@ -14,7 +14,7 @@
 //   using Record = ...; void record(Record& row) const;     // one CSV row: the signal table's columns by name
 //                                                           // (a legacy binding: void record(double* row))
 //   (optional) nlohmann::json figures() const;              // report.json "figures"
-//   (optional) kGuardedStates, state_name(i), state_value(i)   tools/run/state_guard.hpp
+//   (optional) kGuardedStates, state_name(i), state_value(i)   tools/loop/state_guard.hpp
 //   (optional) nlohmann::json report_extra() const;         // blocks beside "figures" ("plant", "drift", ...)
 //   (optional) nlohmann::json error_estimate() const;       // report.json "error_estimate"
 //   (optional) nlohmann::json extra_timing(const LoopOutcome&) const;
@@ -31,8 +31,8 @@
 #include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/any_frame.hpp"
 #include "firmware/msg/sensor_frame.hpp"
-#include "tools/run/loop_outcome.hpp"
-#include "tools/run/state_guard.hpp"
+#include "tools/loop/loop_outcome.hpp"
+#include "tools/loop/state_guard.hpp"
 
 namespace gyrostab::tools {
 

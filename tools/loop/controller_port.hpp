@@ -12,7 +12,7 @@
 
 #include "firmware/fault/fault_monitor.hpp"
 #include "firmware/msg/any_frame.hpp"
-#include "tools/run/controller_report.hpp"
+#include "tools/loop/controller_report.hpp"
 
 namespace gyrostab::tools {
 

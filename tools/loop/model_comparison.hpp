@@ -23,7 +23,7 @@
 #include <utility>
 #include <vector>
 
-#include "tools/run/loop_outcome.hpp"
+#include "tools/loop/loop_outcome.hpp"
 
 namespace gyrostab::tools {
 
