@@ -15,7 +15,7 @@ frame. Checked each time: both exit 0, the controller acknowledged the end of ru
 refused nothing, the plant's signals.csv is byte for byte the in-process run's (`gyrostab run SCENE --ticks N`)
 and report.json's figures are equal. Two more runs (the monorail unkeyed, the ship keyed) lose every 500th
 answer on purpose: the plant resends its sensor frame after 20 ms, the controller answers it again with a new
-freshness (and MAC), and the results are still the in-process run's. About 10 s."""
+freshness (and MAC), and the results are still the in-process run's. About 2 s."""
 import json
 import os
 import re
