@@ -33,6 +33,7 @@
 #include "gyrostab_msg_monorail_sensor_t.h"
 #include "gyrostab_msg_ship_roll_damper_actuator_t.h"
 #include "gyrostab_msg_ship_roll_damper_sensor_t.h"
+#include "outside_cos.h"
 
 /* ---------------------------------------------------------------------------------------------------------
  * Scene file: the subset of TOML the shipped scenes use ([section], key = number | "string" | true/false, #
@@ -127,68 +128,6 @@ static double scene_number(const scene_t* sc, const char* section, const char* k
 }
 
 /* ---------------------------------------------------------------------------------------------------------
- * The firmware's cosine (docs/models/README.md#firmware-cosine): only +, -, *, / in double, in this order. The
- * arguments here are precession angles (|x| < pi/2); the documented reduction covers |x| < 823549. */
-
-static double horner(double x, const double* c, int n) {
-  double r = c[n - 1];
-  for (int i = n - 2; i >= 0; --i) r = c[i] + x * r;
-  return r;
-}
-
-static double sin_kernel(double hi, double lo) {
-  static const double k[] = {-0x1.5555555555555p-3,  0x1.1111111111111p-7,  -0x1.a01a01a01a01ap-13,
-                             0x1.71de3a556c734p-19,  -0x1.ae64567f544e4p-26, 0x1.6124613a86d09p-33,
-                             -0x1.ae7f3e733b81fp-41, 0x1.952c77030ad4ap-49};
-  const double z = hi * hi;
-  const double s = horner(z, k, 8);
-  return hi + ((hi * z) * s + lo * (1.0 - 0.5 * z));
-}
-
-static double cos_kernel(double hi, double lo) {
-  static const double k[] = {0x1.5555555555555p-5,  -0x1.6c16c16c16c17p-10, 0x1.a01a01a01a01ap-16,
-                             -0x1.27e4fb7789f5cp-22, 0x1.1eed8eff8d898p-29, -0x1.93974a8c07c9dp-37,
-                             0x1.ae7f3e733b81fp-45,  -0x1.6827863b97d97p-53};
-  const double z = hi * hi;
-  const double c = horner(z, k, 8);
-  const double hz = 0.5 * z;
-  const double w = 1.0 - hz;
-  return w + (((1.0 - w) - hz) + ((z * z) * c - hi * lo));
-}
-
-static void two_sum(double a, double b, double* s, double* err) {
-  *s = a + b;
-  const double bb = *s - a;
-  *err = (a - (*s - bb)) + (b - bb);
-}
-
-static double fw_cos(double x) {
-  if (x != x) return x;
-  const double ax = fabs(x);
-  if (ax == INFINITY || ax >= 823549.0) return NAN; /* beyond the documented reduction: never a case angle */
-  if (ax < 0x1p-27) return 1.0;
-  int quadrant = 0;
-  double hi = ax, lo = 0.0;
-  if (ax > 0x1.921fb54442d18p-1) { /* pi/4 */
-    const double kd = (ax * 0x1.45f306dc9c883p-1 + 0x1.8p52) - 0x1.8p52;
-    const double t = ax - kd * 0x1.921fb544p+0;
-    double ahi, alo, bhi, blo;
-    two_sum(t, -(kd * 0x1.0b4611a6p-34), &ahi, &alo);
-    two_sum(ahi, -(kd * 0x1.3198a2e037073p-69), &bhi, &blo);
-    const double b = blo + alo;
-    hi = bhi + b;
-    lo = b - (hi - bhi);
-    quadrant = (int)kd & 3;
-  }
-  switch (quadrant) {
-    case 0: return cos_kernel(hi, lo);
-    case 1: return -sin_kernel(hi, lo);
-    case 2: return -cos_kernel(hi, lo);
-    default: return sin_kernel(hi, lo);
-  }
-}
-
-/* ---------------------------------------------------------------------------------------------------------
  * The laws (docs/models/monorail.md#firmware-law, docs/models/ship-roll-damper.md#firmware-laws). */
 
 #define BIT_AXIS2_SATURATED (1u << 21)
@@ -238,7 +177,7 @@ static uint32_t ship_step(ship_law_t* p, const double* in, double* cmd) {
     cmd[0] = m.value;
     return m.clipped ? BIT_AXIS2_SATURATED : 0u;
   }
-  const double cb = fw_cos(beta);
+  const double cb = outside_cos(beta);
   const double drive = p->H * cb * roll_rate;
   const double feedback = p->k_r * cb * roll_rate;
   const double sigma = beta < 0.0 ? -1.0 : 1.0;
