@@ -6,7 +6,8 @@
 INTEROP_CONTROLLER is tests/interop/interop_controller.c: C11 against the `lcm-gen -c` bindings of the device's
 generated .lcm types, liblcm and libsodium, written from docs/protocol.md, docs/transport.md, docs/scenes.md and
 the devices' docs pages only (no project header or library). Runs itself inside a private network namespace
-(unshare -n; exit 77 where that is not permitted), ttl=0.
+(unshare -n; exit 77 where that is not permitted), ttl=0. First: the controller's sources include nothing but the
+C library, liblcm, libsodium and lcm-gen's headers.
 
 For the monorail (3000 ticks) and the active ship roll damper (5000 ticks), unkeyed and with --key-file (a key
 file of mode 600 on both ends), `gyrostab plant SCENE --ticks N` runs against the C controller, which learns
@@ -53,7 +54,28 @@ def read(path):
         return f.read()
 
 
+ALLOWED_INCLUDE = re.compile(r'^(<(ctype|errno|math|stdint|stdio|stdlib|string|time|sys/stat)\.h>|<lcm/lcm\.h>|'
+                             r'<sodium\.h>|"gyrostab_msg_\w+\.h"|"outside_cos\.h")$')
+
+
+def outside_only(src):
+    """The controller's own sources include the C library, liblcm, libsodium, lcm-gen's output and each other:
+    nothing of the project (firmware/, hil/, sim/, tools/, generated gyrostab_signals/)."""
+    includes, bad = 0, []
+    for name in ("interop_controller.c", "outside_cos.h"):
+        with open(os.path.join(src, "tests/interop", name)) as f:
+            for n, line in enumerate(f, 1):
+                m = re.match(r"\s*#\s*include\s+(\S+)", line)
+                if m:
+                    includes += 1
+                    if not ALLOWED_INCLUDE.match(m.group(1)):
+                        bad.append(f"{name}:{n} {m.group(1)}")
+    check(includes > 0 and not bad, f"the controller's {includes} includes are the C library's, lcm's, sodium's or "
+                                    f"lcm-gen's ({', '.join(bad) or 'none other'})")
+
+
 def inside(gyrostab, controller, src, work):
+    outside_only(src)
     env = dict(os.environ, GYROSTAB_PLOT_SCRIPT="")
     subprocess.run(["ip", "link", "set", "lo", "up"], check=True)
     subprocess.run(["ip", "link", "set", "lo", "multicast", "on"], check=True)
