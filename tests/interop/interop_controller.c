@@ -622,8 +622,13 @@ int main(int argc, char** argv) {
     if (L.ended && t - L.ended_at_ns >= END_LINGER_NS) break;
     const long limit = L.bound ? timeout_ms : start_timeout_ms;
     if (t - L.last_rx_ns > (int64_t)limit * 1000000LL) {
-      fprintf(stderr, "interop_controller: plant lost after tick %lld (%ld ms without a frame)\n",
-              (long long)L.answered, limit);
+      if (L.bound) {
+        fprintf(stderr, "interop_controller: plant lost after tick %lld (%ld ms without a frame)\n",
+                (long long)L.answered, limit);
+      } else {
+        fprintf(stderr, "interop_controller: no plant of scene %016llx within %ld ms (%ld frames of other scenes "
+                        "refused)\n", (unsigned long long)L.scene_hash, limit, L.other_scene);
+      }
       return 6;
     }
   }

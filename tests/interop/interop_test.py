@@ -16,7 +16,9 @@ frame. Checked each time: both exit 0, the controller acknowledged the end of ru
 refused nothing, the plant's signals.csv is byte for byte the in-process run's (`gyrostab run SCENE --ticks N`)
 and report.json's figures are equal. Two more runs (the monorail unkeyed, the ship keyed) lose every 500th
 answer on purpose: the plant resends its sensor frame after 20 ms, the controller answers it again with a new
-freshness (and MAC), and the results are still the in-process run's. About 2 s."""
+freshness (and MAC), and the results are still the in-process run's. Last, a controller built for another
+scene (the monorail with another gain) refuses the plant's frames with both scene hashes and never binds: both
+exit 6 after their start timeouts. About 3 s."""
 import json
 import os
 import re
@@ -127,6 +129,27 @@ def inside(gyrostab, controller, src, work):
         check(same_csv, f"{name}: signals.csv byte-identical to the in-process run ({wall:.1f} s)")
         same_fig = os.path.exists(os.path.join(out, "report.json")) and figures(ref) == figures(out)
         check(same_fig, f"{name}: report.json figures equal to the in-process run's")
+    # A controller built for another scene (the monorail with k = 5600): it refuses the plant's frames, naming both
+    # hashes, and never binds; both ends give up after their start timeout (exit 6).
+    scene = os.path.join(src, "sim/scenes/monorail.toml")
+    with open(scene) as f:
+        text = f.read()
+    other = os.path.join(work, "monorail-other-gain.toml")
+    with open(other, "w") as f:
+        f.write(re.sub(r"(?m)^k = 5500", "k = 5600", text))
+    plant = subprocess.Popen([gyrostab, "plant", scene, "--ticks", "100", "--start-timeout-ms", "1500", "--out",
+                              os.path.join(work, "plant-other")], env=env, stdout=subprocess.PIPE,
+                             stderr=subprocess.STDOUT, text=True)
+    try:
+        ctl = subprocess.run([controller, other, "--start-timeout-ms", "1000"], capture_output=True, text=True,
+                             timeout=60)
+    finally:
+        plant_out, _ = plant.communicate(timeout=60)
+    check(ctl.returncode == 6 and re.search(r"refusing frames of scene [0-9a-f]{16} \(ours [0-9a-f]{16}\)",
+                                            ctl.stderr) is not None,
+          f"a controller of another scene refuses the plant's frames with both hashes and exits 6 ({ctl.returncode}: "
+          f"{ctl.stderr.strip()[-300:]})")
+    check(plant.returncode == 6, f"its plant gets no answer and exits 6 ({plant.returncode}: {plant_out.strip()[-200:]})")
     return 1 if FAILS else 0
 
 
