@@ -459,6 +459,9 @@ static void on_sensor(const lcm_recv_buf_t* rbuf, const char* channel, void* use
     L->bound = 1;
     L->session = f.session;
     L->plant = f.sender;
+    L->last.scene = (int64_t)L->scene_hash; /* the envelope of every frame we send from now on */
+    L->last.sender = (int64_t)L->own_id;
+    L->last.session = L->session;
   }
   L->last_rx_ns = now_ns();
 
@@ -511,9 +514,6 @@ static void on_sensor(const lcm_recv_buf_t* rbuf, const char* channel, void* use
   L->last.v[0] = cmd[0];
   L->last.v[1] = cmd[1];
   L->last.sim_time_us = f.tick * L->tick_ns / 1000;
-  L->last.scene = (int64_t)L->scene_hash;
-  L->last.sender = (int64_t)L->own_id;
-  L->last.session = L->session;
   ++L->answers;
   const int lose = L->lose_every > 0 && L->answers % L->lose_every == 0;
   publish_frame(L, lose);
