@@ -454,6 +454,11 @@ def main(argv: list[str]) -> int:
                           f"(tools/signals/generate.py --icd docs/icd tools/devices/*/*_signals.toml)",
                           file=sys.stderr)
                     stale += 1
+        if a.check_icd and a.check_icd.is_dir():
+            extra = sorted(p.name for p in a.check_icd.glob("*.md") if p.name not in {n for n, _ in docs})
+            for name in extra:
+                print(f"{a.check_icd / name} is no device's document: remove it", file=sys.stderr)
+                stale += 1
         if stale:
             return 1
     if a.list:
