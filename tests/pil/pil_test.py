@@ -4,7 +4,8 @@
 Checks, each with `gyrostab run SCENE --transport target` (the image of BUILD/arm/m7, -icount shift=0):
   1. every image boots, takes its scene's configuration and steps in lockstep: a short run of every shipped
      scene of a device with a firmware controller gives a signals.csv identical byte for byte to the
-     in-process run of the same scene and seed (42 scenes, 18 images);
+     in-process run of the same scene and seed (the scenes come from sim/scenes/, the images from
+     firmware/target/images/: no hand-kept list; 43 scenes and 18 images at the time of writing);
   2. two whole scenes on the target are bit-identical to in process: the monorail (60 000 ticks) and the power
      stabilizer with DC drives (100 000 ticks, current loops at 10 kHz);
   3. the board's UART carries the same frames (--target-link uart): identical for 300 ticks;
@@ -32,56 +33,34 @@ import subprocess
 import sys
 import tempfile
 import time
+import tomllib
 
 SENSOR_MISSING_BIT = 1 << 0  # FaultBit::kSensorMissing (firmware/msg/fault_bits.hpp)
 SAFE_STATE_BIT = 1 << 9  # FaultBit::kSafeState
 
-# Every shipped scene whose device has a firmware image, and its image.
-SCENES = {
-    "ship-roll-damper-active": "ship_roll_damper",
-    "ship-roll-damper-passive": "ship_roll_damper",
-    "ship-roll-damper-roll-decay": "ship_roll_damper",
-    "power-stabilizer": "power_stabilizer",
-    "power-stabilizer-drive": "power_stabilizer",
-    "power-stabilizer-precession": "power_stabilizer",
-    "power-stabilizer-ship-motion": "power_stabilizer",
-    "power-stabilizer-recorded-motion": "power_stabilizer",
-    "monorail": "monorail",
-    "servo-gyro": "servo_gyro",
-    "gyro-vertical-aircraft-turn": "gyro_vertical",
-    "gyro-vertical-dead-zone": "gyro_vertical",
-    "directional-gyro-earth-rate": "directional_gyro",
-    "directional-gyro-turn-error": "directional_gyro",
-    "gyrocompass-fixed-base-settling": "gyrocompass",
-    "gyrocompass-ship-crossing-latitudes": "gyrocompass",
-    "inertial-platform-schuler": "inertial_platform",
-    "inertial-platform-single-axis": "inertial_platform",
-    "inertial-platform-two-position-gyros": "inertial_platform",
-    "schuler-gyro-pendulum": "gyro_pendulum",
-    "gyro-pendulum-kepler-orbit": "gyro_pendulum",
-    "gimbal-error-heading-gyro-turn": "gimbal_error",
-    "gimbal-error-recorded-motion": "gimbal_error",
-    "u-gyro-rate-table": "u_gyro",
-    "coning-p-gyro-planar-vibration": "coning",
-    "coning-i-gyro-conical-vibration": "coning",
-    "coning-recorded-motion": "coning",
-    "coning-goodman-robinson-sidereal-day": "coning",
-    "foucault-declinometer-settling": "foucault_gyro",
-    "foucault-inclinometer-settling": "foucault_gyro",
-    "position-gyro-platform": "position_gyro_platform",
-    "cmg-cluster-slew": "cmg_cluster",
-    "cmg-cluster-singularity-pseudo-inverse": "cmg_cluster",
-    "cmg-cluster-singularity-robust": "cmg_cluster",
-    "cmg-cluster-singularity-generalized": "cmg_cluster",
-    "cmg-cluster-envelope-x": "cmg_cluster",
-    "platform-alignment-aircraft": "platform_alignment",
-    "platform-alignment-high-latitude": "platform_alignment",
-    "bauersfeld-compass-ship": "bauersfeld_compass",
-    "bauersfeld-compass-mistuned": "bauersfeld_compass",
-    "bauersfeld-compass-tilt": "bauersfeld_compass",
-    "two-rotor-gyro-frame": "two_rotor_stabilizer",
-    "two-rotor-two-axis": "two_rotor_stabilizer",
-}
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def image_devices():
+    """The devices with a firmware controller image: firmware/target/images/<device>_image.cpp (the file that
+    tools/cross/build-firmware-arm builds into BUILD/arm/m7/<device>.elf)."""
+    folder = os.path.join(ROOT, "firmware", "target", "images")
+    return sorted(f[:-len("_image.cpp")] for f in os.listdir(folder) if f.endswith("_image.cpp"))
+
+
+def shipped_scenes():
+    """Every shipped scene (sim/scenes/*.toml) and its [scene] device, by file name."""
+    out = {}
+    folder = os.path.join(ROOT, "sim", "scenes")
+    for f in sorted(os.listdir(folder)):
+        if f.endswith(".toml"):
+            with open(os.path.join(folder, f), "rb") as fh:
+                out[f[:-len(".toml")]] = tomllib.load(fh)["scene"]["device"]
+    return out
+
+
+# Every shipped scene whose device has a firmware image, and its image (= its device).
+SCENES = {scene: device for scene, device in shipped_scenes().items() if device in image_devices()}
 
 failures = []
 
@@ -97,7 +76,7 @@ class Env:
     def __init__(self, build, work):
         self.bin = os.path.join(build, "bin", "gyrostab")
         self.images = os.path.join(build, "arm", "m7")
-        self.root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        self.root = ROOT
         self.work = work
 
     def scene(self, name):
@@ -162,6 +141,9 @@ def main():
         return 77
     try:
         print("1. every image, every scene of its device: 3000 ticks, in process vs target")
+        no_image = sorted(set(shipped_scenes().values()) - set(image_devices()))
+        check(len(SCENES) > 0, "%d shipped scenes of %d devices with an image%s" % (
+            len(SCENES), len(set(SCENES.values())), "; no image: " + ", ".join(no_image) if no_image else ""))
         for scene in SCENES:
             pair(env, scene, ["--ticks", "3000"], scene)
 

@@ -9,8 +9,9 @@
       GEN_DIR/lcm/<device>_sensor_t.lcm, <device>_actuator_t.lcm   the LCM types (lcm-gen runs on them)
   generate.py --fixture --out GEN_DIR TABLE...   only the typed frames and CAN maps of test tables (no index)
       GEN_DIR/gyrostab_signals/all_devices.hpp, all_outputs.hpp   every table's signals / columns, by device
-  generate.py --icd DOCS_DIR TABLE...    docs/icd/<device>.md, the interface control document
-  generate.py --check-icd DOCS_DIR TABLE...   exit 1 if a committed ICD differs from the generated one
+  generate.py --icd DOCS_DIR TABLE...    docs/icd/<device>.md, the interface control documents (icd.py), and
+      docs/icd/README.md, their index with each device's bytes and frames per tick
+  generate.py --check-icd DOCS_DIR TABLE...   exit 1 if a committed document differs from the generated one
 
 A file is rewritten only when its text changes, so a build that regenerates recompiles nothing it need not.
 """
@@ -442,16 +443,22 @@ def main(argv: list[str]) -> int:
         import icd  # noqa: E402
 
         stale = 0
-        for t in tables:
-            text = icd.document(t)
+        docs = [(f"{t.device}.md", icd.document(t)) for t in tables] + [("README.md", icd.index(tables))]
+        for name, text in docs:
             if a.icd:
-                write_if_changed(a.icd / f"{t.device}.md", text)
+                write_if_changed(a.icd / name, text)
             else:
-                p = a.check_icd / f"{t.device}.md"
+                p = a.check_icd / name
                 if not p.exists() or p.read_text() != text:
-                    print(f"{p} is stale: regenerate it with `gyrostab signals --icd docs/icd` "
-                          f"(tools/signals/generate.py --icd docs/icd ...)", file=sys.stderr)
+                    print(f"{p} is stale: regenerate it with `{icd.REGENERATE}` "
+                          f"(tools/signals/generate.py --icd docs/icd tools/devices/*/*_signals.toml)",
+                          file=sys.stderr)
                     stale += 1
+        if a.check_icd and a.check_icd.is_dir():
+            extra = sorted(p.name for p in a.check_icd.glob("*.md") if p.name not in {n for n, _ in docs})
+            for name in extra:
+                print(f"{a.check_icd / name} is no device's document: remove it", file=sys.stderr)
+                stale += 1
         if stale:
             return 1
     if a.list:
