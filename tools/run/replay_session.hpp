@@ -2,7 +2,7 @@
 // opened and its scene event checked against the scene the device was built from, the pacing, the exit
 // codes and the closing lines.
 //
-// Exit codes (README "Logs and replay"):
+// Exit codes (docs/logs.md, "Exit codes of `gyrostab replay`"):
 //   0  every frame identical over the whole log (which ends with its end event)
 //   2  nothing replayed: the log cannot be opened, or its scene is refused
 //   3  re-simulation: the plant diverged where the recorded run did not
