@@ -144,7 +144,7 @@ async function inside(gyrostab, src, work) {
     check(view.buckets.length === want.size && bad === "",
           `the sensor frames' buckets equal the bus log's frames, bit for bit (${view.buckets.length} buckets)` + (bad ? ": " + bad : ""));
     check(view.safe === "running" && view.status.includes("status word"), `the controller's status from the actuator frames: ${view.safe}`);
-    check(view.auth.includes("NOT authenticated") && view.link.includes("legacy") && view.link.includes("0x"),
+    check(view.auth.includes("NOT authenticated") && view.link.includes("ship_roll_damper") && view.link.includes("0x"),
           `the bus panel: ${view.auth}; ${view.link.slice(0, 120)}`);
     check(view.header.includes("NOT authenticated") && view.header.includes("status 0x"), `the actuator header line: ${view.header}`);
   } finally {

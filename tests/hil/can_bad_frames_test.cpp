@@ -26,6 +26,7 @@
 #include "hil/link/frame_endpoint.hpp"
 #include "tests/hil/hil_test_support.hpp"
 #include "tools/run/can_link_setup.hpp"
+#include "tests/support/union_frames.hpp"
 
 namespace gyrostab::testing {
 namespace {
@@ -70,7 +71,7 @@ class FakePlant {
     can::SocketCanConfig c;
     c.ifname = can_if();
     for (std::size_t i = 0; i < bus_.messages().size(); ++i)
-      if (bus_.messages()[i].direction == can::Direction::kActuator && bus_.has(i))
+      if (bus_.messages()[i].direction == can::Direction::kActuator)
         c.receive_ids.push_back(bus_.messages()[i].id);
     std::string error;
     EXPECT_TRUE(socket_.open(c, error)) << error;
