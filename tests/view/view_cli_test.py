@@ -165,8 +165,8 @@ def main():
               limits.get("precession_torque_limit_Nm") == "precession_torque_Nm" and
               limits.get("precession_soft_limit_rad") == "precession_rad", f"limits placed on their signals: {limits}")
         units = {s["name"]: s["unit"] for s in meta["channels"][0]["signals"]}
-        check(units["roll_rate_rad_s"] == "rad/s" and units["wave_moment_Nm"] == "N m" and units["status_bits"] is None,
-              "units from the column names where unambiguous")
+        check(units["roll_rate_rad_s"] == "rad/s" and units["wave_moment_Nm"] == "N m" and units["status_bits"] == "bits",
+              "units from the signal table")
         end, rows = None, 0
         deadline = time.time() + 60
         while end is None and time.time() < deadline:
