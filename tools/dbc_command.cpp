@@ -30,7 +30,12 @@ int write_dbc(const DbcRequest& req) {
                  req.target.c_str(), names.c_str());
     return 2;
   }
-  const std::string text = can::dbc_text(can_bus_of(device));
+  const can::DeviceBus bus = can_bus_of(device);
+  if (bus.map == nullptr) {
+    std::fprintf(stderr, "gyrostab dbc: device %s has no signal table, so no CAN map\n", device.c_str());
+    return 2;
+  }
+  const std::string text = can::dbc_text(bus);
   std::FILE* f = req.out.empty() ? stdout : std::fopen(req.out.c_str(), "w");
   const bool written = f != nullptr && std::fwrite(text.data(), 1, text.size(), f) == text.size();
   const bool closed = f == nullptr || f == stdout ? std::fflush(stdout) == 0 : std::fclose(f) == 0;

@@ -1,6 +1,6 @@
 // `gyrostab dbc DEVICE|SCENE [--out FILE]`: the DBC file of a device's CAN FD bus (hil/can/dbc_writer.hpp) —
-// the map generated from its signal table, with the frames its bus carries (a device still on the legacy
-// table: those of the nodes it has). DEVICE is a [scene] device name; a scene file names its device.
+// the map generated from its signal table, every frame of it. DEVICE is a [scene] device name; a scene file
+// names its device.
 #pragma once
 
 #include <string>

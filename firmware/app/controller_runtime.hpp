@@ -39,8 +39,7 @@
 // command is the safe values (brake on), so a recovering controller never releases the brake on stale data.
 //
 // A device ("law adapter") D provides
-//   using SensorFrame = ...; using ActuatorFrame = ...;   // its typed frames (gyrostab_signals/<device>_frames.hpp;
-//                                                         // default: the shared legacy frames)
+//   using SensorFrame = ...; using ActuatorFrame = ...;   // its typed frames (gyrostab_signals/<device>_frames.hpp)
 //   void control(const SensorFrame& in, ActuatorFrame& cmd)   // writes its commands and its law status bits
 //   void reset()                                              // frame withheld: clear state
 //   (with a drive) static constexpr DriveSignals kDriveSignals[kDriveChannels]   // which values each current
@@ -62,8 +61,7 @@
 #include "firmware/control/torque_current_loop.hpp"
 #include "firmware/fault/fault_monitor.hpp"
 #include "firmware/fault/safe_state.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
 #include "firmware/scheduler/clock.hpp"
 #include "firmware/scheduler/scheduler.hpp"
 
@@ -83,9 +81,6 @@ struct RuntimeConfigOf {
   constexpr double drive_period_s() const { return tick_period_s() * static_cast<double>(drive_divisor); }
 };
 
-// The shared legacy frame's runtime configuration, for the devices not yet on a table of their own.
-using RuntimeConfig = RuntimeConfigOf<msg::SensorFrame>;
-
 // A device's gimbal drives: up to two channels (the book's axes 1 and 2 of a single-rotor device).
 inline constexpr std::size_t kDriveChannels = 2;
 
@@ -103,23 +98,9 @@ struct DriveSignals {
   std::size_t current;  // sensor value [A]
   std::size_t rate;     // sensor value [rad/s]
 };
-// The shared legacy frame's channels: gimbal_torque_Nm[a], motor_voltage_V[a], motor_current_A[a],
-// gimbal_rate_rad_s[a].
-inline constexpr DriveSignals kLegacyDriveSignals[kDriveChannels] = {
-    {msg::CommandIndex::gimbal_torque_Nm, msg::CommandIndex::motor_voltage_V, msg::SensorIndex::motor_current_A,
-     msg::SensorIndex::gimbal_rate_rad_s},
-    {msg::CommandIndex::gimbal_torque_Nm + 1, msg::CommandIndex::motor_voltage_V + 1,
-     msg::SensorIndex::motor_current_A + 1, msg::SensorIndex::gimbal_rate_rad_s + 1}};
-
-// The typed frames of a law adapter: its own, or the shared legacy ones.
+// The typed frames of a law adapter (its own, generated from its signal table).
 template <class Device>
 struct DeviceFrames {
-  using Sensor = msg::SensorFrame;
-  using Actuator = msg::ActuatorFrame;
-};
-template <class Device>
-  requires requires { typename Device::SensorFrame; }
-struct DeviceFrames<Device> {
   using Sensor = typename Device::SensorFrame;
   using Actuator = typename Device::ActuatorFrame;
 };
@@ -168,7 +149,7 @@ class ControllerRuntime {
         check_(check),
         monitor_(rc.monitor),
         scheduler_(clock, 0),
-        drive_axes_(dc.enabled ? drive_axes : 0u) {
+        drive_axes_(dc.enabled && kHasDrive ? drive_axes : 0u) {
     set_held_to_safe_values();
     if (!check_.ok) return;  // refused: no task ever runs a law (the monitor still screens, for counters)
     for (std::size_t a = 0; a < kDriveChannels; ++a) {
@@ -246,6 +227,8 @@ class ControllerRuntime {
 
  private:
   static inline const PerfCounter kNoCounter{};
+  // A device without kDriveSignals has no current loops: its drive task never runs, whatever the config says.
+  static constexpr bool kHasDrive = requires { Device::kDriveSignals; };
 
   void control_task(std::uint64_t /*tick*/) {
     if (screened_ == nullptr) return;
@@ -256,24 +239,18 @@ class ControllerRuntime {
   }
 
   void drive_task(std::uint64_t /*tick*/) {
-    if (screened_ == nullptr) return;
-    drive_status_ = 0;
-    for (std::size_t a = 0; a < kDriveChannels; ++a) {
-      if ((drive_axes_ & axis_mask(a)) == 0u) continue;
-      const DriveSignals& d = drive_signals()[a];
-      const TorqueCurrentOutput o = drives_[a].step(msg::signal_value(held_, d.torque),
-                                                    msg::signal_value(*screened_, d.current),
-                                                    msg::signal_value(*screened_, d.rate));
-      msg::set_signal_value(held_, d.voltage, o.voltage_V);
-      if (o.saturated) drive_status_ |= bit(LawStatusBit::kDriveVoltageSaturated);
-    }
-  }
-
-  static constexpr const DriveSignals* drive_signals() {
-    if constexpr (requires { Device::kDriveSignals; }) {
-      return Device::kDriveSignals;
-    } else {
-      return kLegacyDriveSignals;
+    if constexpr (kHasDrive) {
+      if (screened_ == nullptr) return;
+      drive_status_ = 0;
+      for (std::size_t a = 0; a < kDriveChannels; ++a) {
+        if ((drive_axes_ & axis_mask(a)) == 0u) continue;
+        const DriveSignals& d = Device::kDriveSignals[a];
+        const TorqueCurrentOutput o = drives_[a].step(msg::signal_value(held_, d.torque),
+                                                      msg::signal_value(*screened_, d.current),
+                                                      msg::signal_value(*screened_, d.rate));
+        msg::set_signal_value(held_, d.voltage, o.voltage_V);
+        if (o.saturated) drive_status_ |= bit(LawStatusBit::kDriveVoltageSaturated);
+      }
     }
   }
 

@@ -43,7 +43,6 @@
 #include "firmware/fault/sensor_ranges.hpp"
 #include "firmware/msg/any_frame.hpp"
 #include "firmware/msg/fault_bits.hpp"
-#include "firmware/msg/sensor_frame.hpp"
 
 namespace gyrostab::firmware {
 
@@ -57,9 +56,6 @@ struct FaultMonitorConfigOf {
                                     msg::bit(msg::SensorStatusBit::kDriveFault) |
                                     msg::bit(msg::SensorStatusBit::kRotorSpeedInvalid)};
 };
-
-// The shared legacy frame's configuration, for the devices not yet on a table of their own.
-using FaultMonitorConfig = FaultMonitorConfigOf<msg::SensorFrame>;
 
 enum class MonitorState : std::uint8_t { kAwaitingFirstFrame, kNormal, kHolding, kSafe };
 
@@ -234,8 +230,5 @@ class FaultMonitorOf {
   std::uint64_t seen_tick_{0};
   std::uint32_t seen_sequence_{0};
 };
-
-// The shared legacy frame's monitor, for the devices not yet on a table of their own.
-using FaultMonitor = FaultMonitorOf<msg::SensorFrame>;
 
 }  // namespace gyrostab::firmware

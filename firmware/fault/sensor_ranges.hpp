@@ -10,14 +10,11 @@
 #include <span>
 
 #include "firmware/msg/any_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
 #include "firmware/msg/signal_spec.hpp"
 
 namespace gyrostab::firmware {
 
 using msg::Range;
-// The shared legacy frame's ranges, for the devices not yet on a table of their own.
-using SensorRanges = msg::SensorRanges;
 
 inline constexpr double kPi = 3.14159265358979323846;
 

@@ -5,20 +5,20 @@
 //
 // The bus drivers are not part of the proof: a sensor-bus DMA is taken to write g_sensor_rx and raise
 // g_sensor_rx_ready, a drive-bus DMA to send g_actuator_tx. The command itself is a placeholder (zero
-// torque, brake released) where the device control laws (firmware/control/) go.
+// torque, brake released) where the device control laws (firmware/control/) go. The frames are the monorail's
+// (gyrostab_signals/monorail_frames.hpp), a real device's generated frames; the PIL images run every device's.
 #include <cstdint>
 
 #include "firmware/fault/fault_monitor.hpp"
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
 #include "firmware/scheduler/scheduler.hpp"
 #include "firmware/target/cortex_m4_registers.hpp"
 #include "firmware/target/dwt_cycle_clock.hpp"
 #include "firmware/target/systick.hpp"
+#include "gyrostab_signals/monorail_frames.hpp"
 
 namespace m4 = gyrostab::firmware::cortex_m4;
 namespace fw = gyrostab::firmware;
-namespace msg = gyrostab::msg;
+namespace msg = gyrostab::msg::monorail;
 
 // Bus buffers and the counters snapshot, with external linkage so the compiler keeps every access.
 extern "C" {
@@ -84,7 +84,7 @@ class TargetController {
 
  private:
   fw::Scheduler<4, m4::DwtCycleClock> scheduler_{m4::DwtCycleClock{kCoreHz}, kTickNs};
-  fw::FaultMonitor monitor_{};
+  fw::FaultMonitorOf<msg::SensorFrame> monitor_{};
   std::size_t control_id_{0};
   std::uint32_t sequence_{0};
 };

@@ -32,7 +32,6 @@
 #include <new>
 
 #include "firmware/link/target_frame.hpp"
-#include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/any_frame.hpp"
 #include "firmware/scheduler/perf_counter.hpp"
 #include "firmware/target/instruction_clock.hpp"

@@ -64,7 +64,6 @@ constexpr BusLoad bus_load(const DeviceBus& bus, double tick_rate_hz, const BusT
   BusLoad b;
   const std::span<const MessageSpec> messages = bus.messages();
   for (std::size_t i = 0; i < messages.size(); ++i) {
-    if (!bus.has(i)) continue;
     b.busy_s_per_tick += frame_time_s(fd_frame_bits(messages[i].length), timing);
     ++b.frames_per_tick;
   }

@@ -20,7 +20,7 @@ inline std::vector<std::string_view> bus_nodes(const DeviceBus& bus) {
   for (Direction d : {Direction::kSensor, Direction::kActuator}) {
     for (std::size_t i = 0; i < bus.messages().size(); ++i) {
       const MessageSpec& m = bus.messages()[i];
-      if (m.direction == d && bus.has(i)) add(m.node);
+      if (m.direction == d) add(m.node);
     }
   }
   return nodes;
@@ -37,7 +37,7 @@ inline std::vector<std::string_view> command_receivers(const DeviceBus& bus) {
   std::vector<std::string_view> out;
   for (std::size_t i = 0; i < bus.messages().size(); ++i) {
     const MessageSpec& m = bus.messages()[i];
-    if (m.direction == Direction::kActuator && bus.has(i) && m.node != "controller" &&
+    if (m.direction == Direction::kActuator && m.node != "controller" &&
         std::find(out.begin(), out.end(), m.node) == out.end())
       out.push_back(m.node);
   }

@@ -181,15 +181,11 @@ class FrameEndpoint<can::CanBusTransport> : public EndpointBook {
     const std::string where = std::string(v.message) + "." + std::string(v.signal);
     char value[40];
     std::snprintf(value, sizeof value, "%.17g", v.value);
-    if (v.cause == can::FieldViolation::Cause::kNotInteger) {
-      const bool is_signed = v.spec != nullptr && v.spec->kind == can::SignalKind::kSigned;
-      const int bits = v.spec != nullptr ? v.spec->bit_length : 0;
-      return "the device set " + where + " to " + value + ", which its CAN signal carries as " +
-             (is_signed ? "int" : "uint") + std::to_string(bits) +
-             " (the signal table's can key): only an integer of that type travels exactly, so the frame is refused";
-    }
-    return "the device set " + where + " (" + value + ") but has no node that carries it on the CAN bus (the "
-           "legacy table's frames of a node the device's descriptor does not list in can_nodes)";
+    const bool is_signed = v.spec != nullptr && v.spec->kind == can::SignalKind::kSigned;
+    const int bits = v.spec != nullptr ? v.spec->bit_length : 0;
+    return "the device set " + where + " to " + value + ", which its CAN signal carries as " +
+           (is_signed ? "int" : "uint") + std::to_string(bits) +
+           " (the signal table's can key): only an integer of that type travels exactly, so the frame is refused";
   }
 
   static std::int64_t now_ns(clockid_t clock) {

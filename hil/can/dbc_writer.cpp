@@ -39,8 +39,7 @@ std::string quoted(std::string_view s) {
 std::string dbc_text(const DeviceBus& bus) {
   const std::span<const MessageSpec> messages = bus.messages();
   std::vector<const MessageSpec*> on_bus;
-  for (std::size_t i = 0; i < messages.size(); ++i)
-    if (bus.has(i)) on_bus.push_back(&messages[i]);
+  for (const MessageSpec& m : messages) on_bus.push_back(&m);
   std::string o;
   o += "VERSION \"gyrostab-can-2\"\n\n\n";
   o += "NS_ :\n\tCM_\n\tBA_DEF_\n\tBA_\n\tBA_DEF_DEF_\n\tSIG_VALTYPE_\n\n";

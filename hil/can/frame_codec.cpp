@@ -100,7 +100,6 @@ std::string_view frame_error_name(FrameError e) {
     case FrameError::kExtendedId: return "29-bit identifier";
     case FrameError::kUnknownId: return "unknown identifier";
     case FrameError::kWrongDirection: return "frame of the other direction";
-    case FrameError::kAbsentNode: return "frame of a node the device does not have";
     case FrameError::kNotFd: return "classic frame on a CAN FD identifier";
     case FrameError::kWrongLength: return "wrong length";
     case FrameError::kBadCrc: return "bad CRC";
@@ -158,12 +157,7 @@ bool FrameEncoder::carriable(const std::uint8_t* frame, FieldViolation* violatio
     if (m.direction != direction_) continue;
     for (const SignalSpec& s : m.signals) {
       if (!is_frame_signal(s)) continue;
-      if (!bus_.has(i)) {
-        // Not on this bus (legacy node filter): the value must be all zero bits, a sign bit included.
-        const std::uint8_t* p = frame + s.field_offset;
-        for (std::size_t b = 0; b < field_bytes(s); ++b)
-          if (p[b] != 0) return refuse(FieldViolation::Cause::kAbsentNode, m, s);
-      } else if (s.integer) {
+      if (s.integer) {
         std::uint64_t raw = 0;
         if (!integer_raw(s, frame_double(frame, s), raw)) return refuse(FieldViolation::Cause::kNotInteger, m, s);
       }
@@ -183,7 +177,7 @@ std::size_t FrameEncoder::encode_bytes(const std::uint8_t* frame, std::span<CanF
   std::size_t n = 0;
   for (std::size_t idx = 0; idx < messages.size(); ++idx) {
     const MessageSpec& m = messages[idx];
-    if (m.direction != direction_ || !bus_.has(idx)) continue;
+    if (m.direction != direction_) continue;
     CanFrame& c = out[n++];
     c = CanFrame{};
     c.id = m.id;
@@ -220,7 +214,6 @@ FrameError SetAssembler::check(const CanFrame& f, int& index) {
   if (index < 0) return FrameError::kUnknownId;
   const MessageSpec& m = bus_.messages()[static_cast<std::size_t>(index)];
   if (m.direction != direction_) return FrameError::kWrongDirection;
-  if (!bus_.has(static_cast<std::size_t>(index))) return FrameError::kAbsentNode;
   if (!f.fd()) return FrameError::kNotFd;
   if (f.len != m.length) return FrameError::kWrongLength;
   if (frame_crc(f.id, f.data, f.len) != f.data[kCrcByte]) return FrameError::kBadCrc;

@@ -5,13 +5,12 @@
 // FrameEncoder: one generic frame → the frames of its direction on the device's bus, header last, each with
 // its envelope (CRC-8, alive counter, tick tag). Refuses (returns 0, nothing encoded, no counter advanced) a
 // frame with a value the bus cannot carry exactly: a value that rides as an integer (the table's
-// can = "int32") but is not one of that type (a fraction, out of range, NaN, -0.0), or (legacy table only) a
-// non-zero value of a node the device does not have. Such a value would be lost or changed on the bus, and
+// can = "int32") but is not one of that type (a fraction, out of range, NaN, -0.0). Such a value would be lost or changed on the bus, and
 // lockstep over CAN would silently stop being bit-identical to in-process.
 //
 // SetAssembler: received frames → complete generic frames, one per tick. Each frame is checked in this order
 // and rejected with the first failing check (FrameError), counted per cause in RxCounters:
-//   error frame, remote frame, 29-bit id, unknown id, other direction, absent node, classic instead of FD,
+//   error frame, remote frame, 29-bit id, unknown id, other direction, classic instead of FD,
 //   wrong length, CRC, reserved bits / padding not zero, alive counter repeated (stale) or skipped (frames lost:
 //   the counter then resynchronises on this frame, so one loss rejects one frame), header tick ≠ tick tag,
 //   late (a tick the receiver has already stepped past).
@@ -46,7 +45,6 @@ enum class FrameError : std::uint8_t {
   kExtendedId,       // a 29-bit identifier: this bus uses 11-bit ones
   kUnknownId,        // an identifier not in the device's map
   kWrongDirection,   // a frame of the map this receiver does not take (e.g. a command at the controller)
-  kAbsentNode,       // a frame of a node this device does not have (legacy table: DeviceBus leaves it out)
   kNotFd,            // a classic frame on an identifier of the map (all are CAN FD)
   kWrongLength,      // a length other than the map's
   kBadCrc,           // the CRC-8 does not match
@@ -82,10 +80,9 @@ struct RxCounters {
 // A value of a frame the bus cannot carry exactly (FrameEncoder::encode refused the frame).
 struct FieldViolation {
   enum class Cause : std::uint8_t {
-    kAbsentNode,  // a non-zero value of a frame that is not on this device's bus (legacy table's node filter)
     kNotInteger,  // a value that rides as an integer but is not an integer of its type (or is -0.0)
   };
-  Cause cause{Cause::kAbsentNode};
+  Cause cause{Cause::kNotInteger};
   std::string_view message;  // the frame that carries it
   std::string_view signal;   // the signal
   double value{0.0};

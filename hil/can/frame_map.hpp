@@ -38,7 +38,6 @@
 #include <string_view>
 
 #include "firmware/msg/signal_spec.hpp"
-#include "hil/can/legacy_nodes.hpp"
 
 namespace gyrostab::can {
 
@@ -83,7 +82,6 @@ struct CanMap {
   const msg::DeviceSignals* signals;  // the frames it carries
   std::span<const MessageSpec> messages;
   std::uint64_t fingerprint;          // of the layout (can_layout.py): a candump log records it
-  bool legacy;                        // transitional: the shared legacy table (DeviceBus filters its nodes)
 };
 
 // Envelope (every message).
@@ -111,16 +109,13 @@ constexpr std::size_t field_bytes(const SignalSpec& s) {
   return s.integer ? sizeof(double) : s.bit_length / 8u;
 }
 
-// The messages one device's bus carries: its map, less (transitional, legacy table only) the frames of nodes
-// the device does not have.
+// The messages one device's bus carries: every message of its map (generated from its signal table).
 struct DeviceBus {
   const CanMap* map{nullptr};  // nullptr: no bus (no messages)
-  std::uint32_t present{0};    // bit i: map->messages[i] is on this bus
 
   constexpr std::span<const MessageSpec> messages() const {
     return map != nullptr ? map->messages : std::span<const MessageSpec>{};
   }
-  constexpr bool has(std::size_t i) const { return i < 32 && ((present >> i) & 1u) != 0; }
   // Index of the message with this identifier in the map, or -1. O(messages).
   constexpr int index_of(std::uint32_t id) const {
     const std::span<const MessageSpec> m = messages();
@@ -133,13 +128,13 @@ struct DeviceBus {
     const std::span<const MessageSpec> m = messages();
     std::uint32_t out = 0;
     for (std::size_t i = 0; i < m.size(); ++i)
-      if (m[i].direction == d && has(i)) out |= 1u << i;
+      if (m[i].direction == d) out |= 1u << i;
     return out;
   }
   constexpr std::size_t frames(Direction d) const {
     const std::span<const MessageSpec> m = messages();
     std::size_t n = 0;
-    for (std::size_t i = 0; i < m.size(); ++i) n += m[i].direction == d && has(i);
+    for (std::size_t i = 0; i < m.size(); ++i) n += m[i].direction == d;
     return n;
   }
   // The generic frame's bytes in use: header and the device's values.
@@ -150,22 +145,8 @@ struct DeviceBus {
   }
 };
 
-// Every message of the map: the bus of a device with a table of its own.
-constexpr DeviceBus whole_bus(const CanMap& map) {
-  const std::size_t n = map.messages.size();
-  return DeviceBus{&map, n >= 32 ? ~std::uint32_t{0} : (std::uint32_t{1} << n) - 1u};
-}
-
-// Transitional, deleted with the legacy table: a device on the shared legacy table carries only the frames of
-// the nodes its hardware has (DeviceDescriptor::can_nodes), so its bus load is its own. The header nodes
-// (sensor_hub, controller) are always there. Any other map is carried whole, whatever `nodes` says.
-constexpr DeviceBus device_bus(const CanMap& map, NodeSet nodes) {
-  DeviceBus b = whole_bus(map);
-  if (!map.legacy) return b;
-  for (std::size_t i = 0; i < map.messages.size(); ++i)
-    if (!node_present(map.messages[i].node, nodes)) b.present &= ~(1u << i);
-  return b;
-}
+// The bus of a device: its map, every message of it.
+constexpr DeviceBus whole_bus(const CanMap& map) { return DeviceBus{&map}; }
 
 static_assert(kMaxMessages <= 32, "message masks are 32-bit");
 static_assert(std::numeric_limits<double>::is_iec559, "the bus carries IEEE-754 doubles");

@@ -17,7 +17,6 @@
 #include <cstdint>
 #include <limits>
 
-#include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/any_frame.hpp"
 #include "firmware/msg/signal_spec.hpp"
 #include "hil/link/link_counters.hpp"
@@ -43,13 +42,6 @@ struct ActuatorLimits {
     for (std::size_t i = 0; i < msg::signal_count_v<Frame>; ++i)
       msg::set_signal_value(f, i, std::numeric_limits<double>::infinity());
     return f;
-  }
-
-  // A torque-mode drive of the shared legacy frame: one limit on both gimbal torques.
-  static ActuatorLimits torque_limited(double limit_Nm) {
-    msg::ActuatorFrame f = unlimited<msg::ActuatorFrame>();
-    f.gimbal_torque_Nm[0] = f.gimbal_torque_Nm[1] = limit_Nm;
-    return of(f);
   }
 
   double magnitude[msg::kMaxCommandSignals]{

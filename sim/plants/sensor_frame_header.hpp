@@ -4,8 +4,6 @@
 
 #include <cstdint>
 
-#include "firmware/msg/sensor_frame.hpp"
-
 namespace gyrostab::plants {
 
 template <class SensorFrame>

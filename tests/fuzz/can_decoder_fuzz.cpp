@@ -1,9 +1,8 @@
 // libFuzzer target for the CAN decoders (hil/can/): arbitrary bytes as
 //   1. a stream of received frames, into the set assemblers of both directions of the bus named by the first
-//      byte: its high bits pick a map of the build (gyrostab_signals/all_can_maps.hpp), its low four bits the
-//      node set of the legacy map's transitional node filter (record: flags, id low, id high, len, then len
-//      data bytes — len is taken modulo 65 and may disagree with the frame kind, as a hostile bus could make
-//      it);
+//      byte: its high bits pick a map of the build (gyrostab_signals/all_can_maps.hpp) (record: flags, id low,
+//      id high, len, then len data bytes — len is taken modulo 65 and may disagree with the frame kind, as a
+//      hostile bus could make it);
 //   2. candump log text, line by line, through parse_candump_line, and every parsed frame into the assemblers.
 // Invariants beyond "no crash, no sanitizer report": every frame is either accepted or rejected with one
 // cause (frames = accepted + rejections), a completed set can be taken exactly once, and its tick agrees with
@@ -79,8 +78,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size == 0) return 0;
   constexpr std::size_t kMaps = std::size(gyrostab::can::kAllCanMaps);
   const gyrostab::can::CanMap& map = *gyrostab::can::kAllCanMaps[(data[0] >> 4) % kMaps];
-  const auto nodes = static_cast<gyrostab::can::NodeSet>(data[0] & gyrostab::can::kAllNodes);
-  const DeviceBus bus = gyrostab::can::device_bus(map, nodes);
+  const DeviceBus bus = gyrostab::can::whole_bus(map);
   SetAssembler sensor(bus, Direction::kSensor);
   SetAssembler actuator(bus, Direction::kActuator);
 

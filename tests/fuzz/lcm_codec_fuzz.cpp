@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "hil/lcm/frame_codec.hpp"
+#include "gyrostab_signals/monorail_frames.hpp"
 
 namespace {
 
@@ -37,7 +38,7 @@ void check(const std::uint8_t* data, std::size_t size, int encoded_size) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  check<gyrostab::msg::SensorFrame>(data, size, gyrostab::hil::kSensorEncodedSize);
-  check<gyrostab::msg::ActuatorFrame>(data, size, gyrostab::hil::kActuatorEncodedSize);
+  check<gyrostab::msg::monorail::SensorFrame>(data, size, gyrostab::hil::kSensorEncodedSize);
+  check<gyrostab::msg::monorail::ActuatorFrame>(data, size, gyrostab::hil::kActuatorEncodedSize);
   return 0;
 }

@@ -16,6 +16,7 @@
 #include "hil/link/frame_endpoint.hpp"
 #include "hil/link/link_guard.hpp"
 #include "hil/link/memory_bus.hpp"
+#include "gyrostab_signals/monorail_frames.hpp"
 
 namespace {
 
@@ -80,9 +81,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ++i;
     const int n = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(len), size - i));
     if (to_plant) {
-      feed<msg::ActuatorFrame>(plant, bus->to_plant, data + i, n, keyed, plant_bound);
+      feed<msg::monorail::ActuatorFrame>(plant, bus->to_plant, data + i, n, keyed, plant_bound);
     } else {
-      feed<msg::SensorFrame>(controller, bus->to_controller, data + i, n, keyed, controller_bound);
+      feed<msg::monorail::SensorFrame>(controller, bus->to_controller, data + i, n, keyed, controller_bound);
     }
     i += static_cast<std::size_t>(n);
   }

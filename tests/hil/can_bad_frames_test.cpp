@@ -25,12 +25,16 @@
 #include "hil/can/socketcan_link.hpp"
 #include "hil/link/frame_endpoint.hpp"
 #include "tests/hil/hil_test_support.hpp"
+#include "gyrostab_signals/ship_roll_damper_frames.hpp"
 #include "tools/run/can_link_setup.hpp"
 
 namespace gyrostab::testing {
 namespace {
 
 using can::CanFrame;
+// The ship roll damper's own frames (its signal table), as its controller reads and writes them.
+using SensorFrame = msg::ship_roll_damper::SensorFrame;
+using ActuatorFrame = msg::ship_roll_damper::ActuatorFrame;
 
 std::int64_t mono_ns() {
   timespec ts{};
@@ -70,20 +74,20 @@ class FakePlant {
     can::SocketCanConfig c;
     c.ifname = can_if();
     for (std::size_t i = 0; i < bus_.messages().size(); ++i)
-      if (bus_.messages()[i].direction == can::Direction::kActuator && bus_.has(i))
+      if (bus_.messages()[i].direction == can::Direction::kActuator)
         c.receive_ids.push_back(bus_.messages()[i].id);
     std::string error;
     EXPECT_TRUE(socket_.open(c, error)) << error;
   }
 
-  static msg::SensorFrame frame(std::uint64_t k) {
-    msg::SensorFrame f{};
+  static SensorFrame frame(std::uint64_t k) {
+    SensorFrame f{};
     f.tick = k;
     f.time_ns = static_cast<std::int64_t>(k) * 1'000'000;
     f.sample_time_ns = f.time_ns;
     f.sequence = static_cast<std::uint32_t>(k);
-    f.carrier_angle_rad[msg::kRoll] = 0.01 * std::sin(0.01 * static_cast<double>(k));
-    f.carrier_rate_rad_s[msg::kRoll] = 1e-4 * std::cos(0.01 * static_cast<double>(k));
+    f.roll_rad = 0.01 * std::sin(0.01 * static_cast<double>(k));
+    f.roll_rate_rad_s = 1e-4 * std::cos(0.01 * static_cast<double>(k));
     return f;
   }
 
@@ -121,7 +125,7 @@ class FakePlant {
   // Sends the good set of tick k until the controller's command for tick k comes back; tick 0 is resent every
   // 20 ms until the controller is up. Deadlines, not a number of tries: a sanitizer build starting in the
   // emulated VM took more than 10 s.
-  bool exchange(std::uint64_t k, msg::ActuatorFrame& a) {
+  bool exchange(std::uint64_t k, ActuatorFrame& a) {
     const std::int64_t deadline = mono_ns() + (k == 0 ? 120'000'000'000 : 10'000'000'000);
     while (mono_ns() < deadline) {
       send(k, std::nullopt);
@@ -131,7 +135,7 @@ class FakePlant {
   }
 
   // Waits for the controller's command set (any tick) until the deadline.
-  bool receive(msg::ActuatorFrame& out, std::int64_t deadline) {
+  bool receive(ActuatorFrame& out, std::int64_t deadline) {
     for (;;) {
       CanFrame f;
       if (socket_.receive(f, deadline) != can::CanRx::kFrame) return false;
@@ -143,7 +147,7 @@ class FakePlant {
   void corrupt(CanFrame& f, Bad bad) {
     switch (bad) {
       case Bad::kWrongLength:
-        f.len = 24;  // an FD length, not DRIVE2_FB's 32
+        f.len = drive2_fb_length_ == 48 ? 64 : 48;  // an FD length, not DRIVE2_FB's
         EXPECT_NE(f.len, drive2_fb_length_);
         break;
       case Bad::kUnknownId:
@@ -188,7 +192,7 @@ void run_case(Bad bad) {
       spawn({gyrostab_bin(), "controller", scene("ship-roll-damper-active.toml"), "--can-if", can_if(),
              "--can-no-filter", "--ticks", "1000", "--timeout-ms", "300", "--out", d / "controller"});
   FakePlant plant;
-  msg::ActuatorFrame a{};
+  ActuatorFrame a{};
   // Good ticks (tick 0 resent until the controller is up).
   for (std::uint64_t k = 0; k < kGoodTicks; ++k) {
     ASSERT_TRUE(plant.exchange(k, a)) << "no command for good tick " << k;
@@ -198,12 +202,12 @@ void run_case(Bad bad) {
   // the controller's 300 ms receive timeout — so every bad frame is on the bus, and read, before it gives up.
   const std::uint64_t K = kGoodTicks;
   int bad_frames = 0;
-  std::vector<msg::ActuatorFrame> after;
+  std::vector<ActuatorFrame> after;
   const std::int64_t stop_sending = mono_ns() + 150'000'000;
   const std::int64_t give_up = mono_ns() + 20'000'000'000;
   while (after.size() < 2 && mono_ns() < give_up) {
     if (mono_ns() < stop_sending) bad_frames += plant.send(K, bad);
-    msg::ActuatorFrame f{};
+    ActuatorFrame f{};
     while (plant.receive(f, mono_ns() + 20'000'000)) after.push_back(f);
   }
   const Exit e = wait_for(controller);
@@ -217,7 +221,7 @@ void run_case(Bad bad) {
   // Tick K + 1 (hold_ticks = 1): the safe state, brake on, zero torque.
   EXPECT_EQ(after[1].tick, K + 1);
   EXPECT_TRUE(msg::has(after[1].status, msg::FaultBit::kSafeState));
-  EXPECT_EQ(after[1].gimbal_torque_Nm[msg::kAxis2], 0.0);
+  EXPECT_EQ(after[1].precession_torque_Nm, 0.0);
   EXPECT_EQ(after[1].precession_brake, 1.0);
 
   const nlohmann::json r = read_json(d / "controller/report.json");
@@ -278,7 +282,7 @@ void run_session_case(bool keyed) {
   // A forger's freshness runs ahead of the plant's (which resends tick 0 until the controller is up), else its
   // set is refused as a replay before its MAC is looked at.
   for (int i = 0; i < 5000; ++i) other.protect({});
-  msg::ActuatorFrame a{};
+  ActuatorFrame a{};
   for (std::uint64_t k = 0; k <= kGoodTicks; ++k) {
     if (k == kGoodTicks) plant.send_as(k, other);  // refused: the controller keeps waiting for tick K
     ASSERT_TRUE(plant.exchange(k, a)) << "no command for tick " << k;

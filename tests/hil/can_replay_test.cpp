@@ -17,7 +17,7 @@ namespace {
 
 constexpr const char* kTicks = "300";
 
-// The monorail's bus (the legacy map's imu and drive2 frames).
+// The monorail's bus: its own map, generated from its signal table.
 const can::DeviceBus& monorail_bus() {
   static const can::DeviceBus bus = tools::can_bus_of("monorail");
   return bus;
@@ -41,7 +41,7 @@ std::vector<std::string> frame_lines(const std::string& text, bool commands_only
   std::vector<std::string> command_ids;
   for (std::size_t i = 0; i < monorail_bus().messages().size(); ++i) {
     const can::MessageSpec& m = monorail_bus().messages()[i];
-    if (m.direction == can::Direction::kActuator && monorail_bus().has(i)) command_ids.push_back(hex_id(m.name));
+    if (m.direction == can::Direction::kActuator) command_ids.push_back(hex_id(m.name));
   }
   std::vector<std::string> out;
   std::istringstream in(text);

@@ -11,11 +11,12 @@
 #include <cstring>
 #include <thread>
 
-#include "gyrostab_signals/legacy_can.hpp"
+#include "gyrostab_signals/union_fixture_can.hpp"
 #include "hil/can/candump_log.hpp"
 #include "hil/can/frame_codec.hpp"
 #include "hil/can/socketcan_link.hpp"
 #include "tests/hil/hil_test_support.hpp"
+#include "tests/support/union_frames.hpp"
 
 namespace gyrostab::testing {
 namespace {
@@ -101,7 +102,7 @@ TEST(CanSocket, KernelFilterPassesOnlyOurStandardIds) {
 
 // One tick of the bus: a sensor set and a command set of every node, as the processes send them.
 std::vector<CanFrame> one_tick_of_frames() {
-  const can::DeviceBus bus = can::whole_bus(can::legacy::kCanMap);
+  const can::DeviceBus bus = can::whole_bus(can::union_fixture::kCanMap);
   can::FrameEncoder se(bus, can::Direction::kSensor), ae(bus, can::Direction::kActuator);
   msg::SensorFrame s{};
   s.tick = 42;

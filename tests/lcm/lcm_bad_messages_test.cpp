@@ -36,7 +36,7 @@ struct Forger {
   hil::LinkEnvelope envelope{};
   bool hijack{false};  // also send other contents for the tick the plant has just taken, and every tick
   std::int64_t last_actuator_sequence{-1};
-  const msg::DeviceSignals& device = tools::find_device_signals("monorail");
+  const msg::DeviceSignals& device = *tools::find_device_signals("monorail");
 
   template <class Frame>
   void publish(const std::string& channel, const Frame& f, int size_delta = 0, bool bad_fingerprint = false) {

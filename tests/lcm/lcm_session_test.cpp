@@ -140,7 +140,7 @@ struct Forger {
   lcm_t* lcm{nullptr};
   std::string actuator_channel;
   std::uint64_t forged{0};
-  const msg::DeviceSignals& device = tools::find_device_signals("monorail");
+  const msg::DeviceSignals& device = *tools::find_device_signals("monorail");
 
   void on_actuator(const msg::AnyActuatorFrame& a, const hil::LinkEnvelope& e) {
     if (a.signal[0] == 1999.0) return;  // one of ours

@@ -104,7 +104,7 @@ TEST(BusLogBitFlip, AFlippedSensorBitIsReportedAtExactlyItsTick) {
     const auto ticks = read_ticks(log);
     ASSERT_EQ(ticks.size(), static_cast<std::size_t>(kTicks));
     const TickRecord& t = ticks[kFlipTick];
-    const msg::DeviceSignals& device = tools::find_device_signals(scene_device(log));
+    const msg::DeviceSignals& device = *tools::find_device_signals(scene_device(log));
     int controller_saw = 0;
     for (const FieldFlip& flip : flips_of(device)) {
       SCOPED_TRACE(flip.name);
@@ -146,7 +146,7 @@ TEST(BusLogBitFlip, RandomFlipsAnywhereAreNeverSilent) {
   const std::size_t frames_begin = static_cast<std::size_t>(ticks.front().sensor_offset);
   const std::size_t end_begin = static_cast<std::size_t>(ticks.back().actuator_offset) + kHeaderBytes +
                                 std::string("GYROSTAB_ACTUATOR").size() +
-                                static_cast<std::size_t>(hil::actuator_encoded_size(tools::find_device_signals("monorail")));
+                                static_cast<std::size_t>(hil::actuator_encoded_size(*tools::find_device_signals("monorail")));
   ASSERT_LT(end_begin, bytes.size());
   const std::size_t region[3][2] = {{0, frames_begin}, {frames_begin, end_begin}, {end_begin, bytes.size()}};
   random::SeededRng rng(20261123, 1);

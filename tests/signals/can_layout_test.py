@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """tools/signals/can_layout.py and the CAN keys of a signal table (tools/signals/signal_table.py): the wire
-rules of docs/can.md on the legacy table and on small tables written here — values packed per node in table
+rules of docs/can.md on the union fixture table and on small tables written here — values packed per node in table
 order, a node with more than a frame holds gets more frames, the header node's values in bytes 36-43 of the
 header, `node` per element, `can = "int32"` and its checks, stable identifiers, every byte of the frames
 carried exactly once. Run by ctest (label unit, < 1 s)."""
@@ -73,9 +73,9 @@ def covered_once(test, t, messages):
         test.assertEqual(cover, [1] * size, f"{direction} bytes not covered exactly once")
 
 
-class LegacyTable(Tables):
-    def test_the_shared_frame_keeps_its_frames_and_the_drive_frames_their_32_bytes(self):
-        t = load(ROOT / "firmware/msg/legacy_signals.toml")
+class UnionFixtureTable(Tables):
+    def test_the_union_fixture_keeps_its_frames_and_the_drive_frames_their_32_bytes(self):
+        t = load(ROOT / "tests/signals/union_fixture_signals.toml")
         m = can_layout.layout(t)
         self.assertEqual([(x.name, hex(x.id), x.length) for x in m], [
             ("DRIVE1_CMD", "0x120", 20), ("DRIVE2_CMD", "0x130", 20), ("CLUSTER_CMD", "0x140", 48),
@@ -90,12 +90,6 @@ class LegacyTable(Tables):
         hub = m[-1]
         self.assertEqual([s.name for s in hub.signals if 36 * 8 <= s.start_bit < 44 * 8], ["rotor_speed_rad_s"])
         covered_once(self, t, m)
-
-    def test_the_node_filter_leaves_a_damper_its_three_sensor_and_two_command_frames(self):
-        m = can_layout.layout(load(ROOT / "firmware/msg/legacy_signals.toml"))
-        damper = can_layout.messages_for_nodes(m, {"imu", "drive2"})
-        self.assertEqual([x.name for x in damper], ["DRIVE2_CMD", "CONTROLLER_CMD", "IMU_FB", "DRIVE2_FB",
-                                                    "SENSOR_HUB"])
 
 
 class Packing(Tables):

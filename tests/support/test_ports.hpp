@@ -1,12 +1,12 @@
 // A test's controller as a ControllerPort: any class with step(tick, frame or nullptr, out) on typed frames
-// (the shared legacy ones unless the class names its own SensorFrame/ActuatorFrame), without the firmware
+// (the union fixture's, tests/support/union_frames.hpp), without the firmware
 // runtime's fault monitor (never in its safe state, nothing to acknowledge, no counters).
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <utility>
 
-#include "firmware/msg/sensor_frame.hpp"
+#include "tests/support/union_frames.hpp"
 #include "tools/loop/controller_port.hpp"
 
 namespace gyrostab::testing {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "gyrostab_signals/all_can_maps.hpp"
+#include "gyrostab_signals/union_fixture_can.hpp"
 #include "hil/can/bus_load.hpp"
 #include "tools/devices/registry.hpp"
 #include "tools/run/can_link_setup.hpp"
@@ -43,44 +44,24 @@ TEST(CanBusLoad, FdFrameFieldByField) {
   EXPECT_EQ(fd_frame_bits(12).data, 5 + 96 + 25 + 4 + 17 + 6 + 1);
 }
 
-// The buses of the legacy table's devices, by their descriptors' nodes (the transitional node filter).
-DeviceBus legacy_bus(NodeSet nodes) { return device_bus(legacy::kCanMap, nodes); }
+// The union fixture's bus (tests/signals/union_fixture_signals.toml): every shipped device's signal shapes at once.
+DeviceBus union_bus() { return whole_bus(union_fixture::kCanMap); }
 
-TEST(CanBusLoad, LegacyDeviceSetsAtOneKilohertz) {
+TEST(CanBusLoad, UnionFixtureSetAtOneKilohertz) {
   const BusTiming t{1e6, 5e6};
   auto us = [&](std::size_t n) { return 1e6 * frame_time_s(fd_frame_bits(n), t); };
-  // Ship damper / monorail: IMU_FB 64, DRIVE2_FB 32 (angle, rate, current, encoder count as int32),
-  // SENSOR_HUB 64, CONTROLLER_CMD 64, DRIVE2_CMD 20 (the header frames are 64 bytes: the link envelope).
-  const BusLoad damper = bus_load(legacy_bus(kNodeImu | kNodeDrive2), 1000.0, t);
-  EXPECT_EQ(damper.frames_per_tick, 5);
-  EXPECT_NEAR(damper.busy_s_per_tick * 1e6, us(64) + us(32) + us(64) + us(64) + us(20), 1e-9);
   // Per frame [us] = 33 nominal bits / 1 Mbit/s + data bits / 5 Mbit/s: 64 B 168.8, 48 B 136.8, 32 B 104.8,
-  // 20 B 80.8, 12 B 63.8. Damper: 168.8 + 104.8 + 168.8 + 168.8 + 80.8 = 692.0 us per 1 ms tick.
-  EXPECT_NEAR(damper.load, 0.6920, 1e-9);
-  EXPECT_TRUE(damper.acceptable());
-  // Two-axis devices without IMU (power stabilizer, servo gyro): 2·104.8 + 2·168.8 + 2·80.8 = 708.8 us, over
-  // the 70 % limit at 1 kHz on a 1/5 Mbit/s bus; with an 8 Mbit/s data phase 2·(33 + 359/8) + 2·(33 + 679/8) +
-  // 2·(33 + 239/8) = 517.25 us.
-  const BusLoad two_axis = bus_load(legacy_bus(kNodeDrive1 | kNodeDrive2), 1000.0, t);
-  EXPECT_EQ(two_axis.frames_per_tick, 6);
-  EXPECT_NEAR(two_axis.load, 0.7088, 1e-9);
-  EXPECT_FALSE(two_axis.acceptable());
-  EXPECT_NEAR(bus_load(legacy_bus(kNodeDrive1 | kNodeDrive2), 1000.0, BusTiming{1e6, 8e6}).load, 0.51725, 1e-9);
-  // The CMG cluster: IMU_FB 64, the cluster's eight values in CLUSTER_FB (seven doubles, 64 B) and
-  // CLUSTER_FB_2 (one, 12 B), its command frame of four doubles (48 B), and the two headers: 4·168.8 + 63.8 +
-  // 136.8 = 875.8 us, refused at 1 kHz on a 1/5 Mbit/s bus; with an 8 Mbit/s data phase 4·(33 + 679/8) +
-  // (33 + 154/8) + (33 + 519/8) = 621.625 us.
-  const BusLoad cluster = bus_load(legacy_bus(kNodeImu | kNodeCluster), 1000.0, t);
-  EXPECT_EQ(cluster.frames_per_tick, 6);
-  EXPECT_NEAR(cluster.load, 0.8758, 1e-9);
-  EXPECT_FALSE(cluster.acceptable());
-  EXPECT_NEAR(bus_load(legacy_bus(kNodeImu | kNodeCluster), 1000.0, BusTiming{1e6, 8e6}).load, 0.621625, 1e-9);
-  // Every node, 10 frames: 64 B ×4 (IMU_FB, CLUSTER_FB, the two headers) 675.2, 32 B ×2 209.6, 20 B ×2
-  // 161.6, 48 B 136.8, 12 B 63.8 = 1247.0 us — refused at 1 kHz on a 1/5 Mbit/s bus.
-  EXPECT_NEAR(bus_load(legacy_bus(kAllNodes), 1000.0, t).load, 1.2470, 1e-9);
-  EXPECT_FALSE(bus_load(legacy_bus(kAllNodes), 1000.0, t).acceptable());
-  // The 10 kHz current-loop scene: far beyond any CAN bus.
-  EXPECT_GT(bus_load(legacy_bus(kNodeDrive1 | kNodeDrive2), 10000.0, t).load, 6.0);
+  // 20 B 80.8, 12 B 63.8. Every node, 10 frames: 64 B ×4 (IMU_FB, CLUSTER_FB, the two headers) 675.2, 32 B ×2
+  // (DRIVE1_FB, DRIVE2_FB: angle, rate, current, encoder count as int32) 209.6, 20 B ×2 (DRIVE1_CMD,
+  // DRIVE2_CMD) 161.6, 48 B (CLUSTER_CMD) 136.8, 12 B (CLUSTER_FB_2) 63.8 = 1247.0 us — refused at 1 kHz on a
+  // 1/5 Mbit/s bus.
+  const BusLoad all = bus_load(union_bus(), 1000.0, t);
+  EXPECT_EQ(all.frames_per_tick, 10);
+  EXPECT_NEAR(all.busy_s_per_tick * 1e6, 4 * us(64) + 2 * us(32) + 2 * us(20) + us(48) + us(12), 1e-9);
+  EXPECT_NEAR(all.load, 1.2470, 1e-9);
+  EXPECT_FALSE(all.acceptable());
+  // The 10 kHz current-loop rate: far beyond any CAN bus.
+  EXPECT_GT(bus_load(union_bus(), 10000.0, t).load, 12.0);
 }
 
 // Every shipped device's bus at 1 kHz on the default 1/5 Mbit/s bus (the scenes' own rates: the closed-loop
@@ -93,9 +74,8 @@ TEST(CanBusLoad, EveryShippedDeviceAtOneKilohertz) {
     const BusLoad b = bus_load(bus, 1000.0, t);
     double busy = 0.0;
     int frames = 0;
-    for (std::size_t i = 0; i < bus.messages().size(); ++i) {
-      if (!bus.has(i)) continue;
-      busy += frame_time_s(fd_frame_bits(bus.messages()[i].length), t);
+    for (const MessageSpec& m : bus.messages()) {
+      busy += frame_time_s(fd_frame_bits(m.length), t);
       ++frames;
     }
     EXPECT_EQ(b.frames_per_tick, frames) << d->name;
@@ -108,10 +88,10 @@ TEST(CanBusLoad, EveryShippedDeviceAtOneKilohertz) {
 }
 
 TEST(CanBusLoad, LoadScalesWithTickRateAndDataBitRate) {
-  const BusLoad a = bus_load(legacy_bus(kAllNodes), 500.0, BusTiming{1e6, 5e6});
-  const BusLoad b = bus_load(legacy_bus(kAllNodes), 1000.0, BusTiming{1e6, 5e6});
+  const BusLoad a = bus_load(union_bus(), 500.0, BusTiming{1e6, 5e6});
+  const BusLoad b = bus_load(union_bus(), 1000.0, BusTiming{1e6, 5e6});
   EXPECT_NEAR(b.load, 2.0 * a.load, 1e-12);
-  EXPECT_LT(bus_load(legacy_bus(kAllNodes), 1000.0, BusTiming{1e6, 8e6}).load, b.load);
+  EXPECT_LT(bus_load(union_bus(), 1000.0, BusTiming{1e6, 8e6}).load, b.load);
 }
 
 }  // namespace can_bus_load_test

@@ -1,7 +1,7 @@
 // CAN FD codec (hil/can/frame_codec.hpp) over every map of the build and the tests' own device: frames cross
 // the bus bit for bit (NaN payloads, -0.0, subnormals and infinities as doubles; integers up to their types'
 // extremes), the encoder refuses what cannot travel exactly (a value that rides as an integer but is not one of
-// its type; on the legacy table a value of a node the device does not have), and every kind of bad frame is
+// its type), and every kind of bad frame is
 // rejected with its cause and counted, without disturbing the set of the tick it arrives in.
 #include <gtest/gtest.h>
 
@@ -11,10 +11,10 @@
 #include <cstring>
 #include <limits>
 
-#include "gyrostab_signals/legacy_frames.hpp"
 #include "hil/can/frame_codec.hpp"
 #include "sim/random/seeded_rng.hpp"
 #include "tests/unit/can_test_maps.hpp"
+#include "tests/support/union_frames.hpp"
 
 namespace gyrostab::can {
 namespace can_codec_test {
@@ -56,8 +56,8 @@ TEST(CanCodec, FramesCrossEveryBusBitForBit) {
   }
 }
 
-TEST(CanCodec, TheLegacyTypedFramesCrossWithTheirEncoderCountsAsInt32) {
-  const DeviceBus bus = whole_bus(legacy::kCanMap);
+TEST(CanCodec, TheUnionFixtureTypedFramesCrossWithTheirEncoderCountsAsInt32) {
+  const DeviceBus bus = whole_bus(union_fixture::kCanMap);
   FrameEncoder enc(bus, Direction::kSensor);
   SetAssembler rx(bus, Direction::kSensor);
   msg::SensorFrame f{};
@@ -68,7 +68,7 @@ TEST(CanCodec, TheLegacyTypedFramesCrossWithTheirEncoderCountsAsInt32) {
   std::array<CanFrame, kMaxMessagesPerDirection> frames{};
   const std::size_t n = enc.encode(f, frames);
   ASSERT_EQ(n, 6u);
-  const MessageSpec* drive1 = testing::message_named(legacy::kCanMap, "DRIVE1_FB");
+  const MessageSpec* drive1 = testing::message_named(union_fixture::kCanMap, "DRIVE1_FB");
   ASSERT_NE(drive1, nullptr);
   ASSERT_EQ(drive1->length, 32) << "four values, the encoder count as int32";
   for (std::size_t i = 0; i < n; ++i) {
@@ -84,7 +84,7 @@ TEST(CanCodec, TheLegacyTypedFramesCrossWithTheirEncoderCountsAsInt32) {
 }
 
 TEST(CanCodec, NaNPayloadsPassUnchangedAndAreCounted) {
-  const DeviceBus bus = whole_bus(legacy::kCanMap);
+  const DeviceBus bus = whole_bus(union_fixture::kCanMap);
   FrameEncoder enc(bus, Direction::kSensor);
   SetAssembler rx(bus, Direction::kSensor);
   msg::SensorFrame f{};
@@ -105,7 +105,7 @@ TEST(CanCodec, EncoderRefusesAValueThatIsNotAnIntegerOfItsType) {
     for (Direction d : {Direction::kSensor, Direction::kActuator}) {
       const auto values = testing::values_on(b.bus, d);
       for (std::size_t i = 0; i < values.size(); ++i) {
-        if (!values[i].on_bus || !values[i].signal->integer) continue;
+        if (values[i].signal == nullptr || !values[i].signal->integer) continue;
         const SignalSpec& s = *values[i].signal;
         SCOPED_TRACE(b.label + " " + std::string(s.name));
         const double top = s.kind == SignalKind::kSigned ? std::ldexp(1.0, s.bit_length - 1) : std::ldexp(1.0, s.bit_length);
@@ -137,7 +137,7 @@ TEST(CanCodec, EncoderRefusesAValueThatIsNotAnIntegerOfItsType) {
 }
 
 TEST(CanCodec, ARefusedFrameAdvancesNoAliveCounter) {
-  const DeviceBus bus = whole_bus(legacy::kCanMap);
+  const DeviceBus bus = whole_bus(union_fixture::kCanMap);
   FrameEncoder enc(bus, Direction::kSensor);
   SetAssembler rx(bus, Direction::kSensor);
   std::array<CanFrame, kMaxMessagesPerDirection> frames{};
@@ -158,27 +158,7 @@ TEST(CanCodec, ARefusedFrameAdvancesNoAliveCounter) {
   }
 }
 
-TEST(CanCodec, LegacyEncoderRefusesAValueOfAnAbsentNode) {
-  FrameEncoder enc(device_bus(legacy::kCanMap, kNodeImu | kNodeDrive2), Direction::kSensor);
-  msg::SensorFrame f{};
-  f.gimbal_angle_rad[msg::kAxis1] = 0.1;  // axis 1 has no drive on this device
-  std::array<CanFrame, kMaxMessagesPerDirection> frames{};
-  FieldViolation v;
-  EXPECT_EQ(enc.encode(f, frames, &v), 0u);
-  EXPECT_EQ(v.cause, FieldViolation::Cause::kAbsentNode);
-  EXPECT_EQ(v.message, "DRIVE1_FB");
-  EXPECT_EQ(v.signal, "gimbal_angle_rad_1");
-  EXPECT_EQ(v.value, 0.1);
-  f.gimbal_angle_rad[msg::kAxis1] = -0.0;  // a sign bit is a value too: it would not survive the bus
-  EXPECT_EQ(enc.encode(f, frames, &v), 0u);
-  f.gimbal_angle_rad[msg::kAxis1] = 0.0;
-  EXPECT_EQ(enc.encode(f, frames, &v), 3u);
-  f.encoder_count[msg::kAxis1] = 0.5;  // an absent node's value: refused as absent, whatever its value
-  EXPECT_EQ(enc.encode(f, frames, &v), 0u);
-  EXPECT_EQ(v.cause, FieldViolation::Cause::kAbsentNode);
-}
-
-// Fixture: one good sensor set of tick k of the legacy map's full bus, to corrupt one frame at a time.
+// Fixture: one good sensor set of tick k of the union fixture's bus, to corrupt one frame at a time.
 class CanBadFrames : public ::testing::Test {
  protected:
   std::size_t make_set(std::uint64_t tick) {
@@ -190,7 +170,7 @@ class CanBadFrames : public ::testing::Test {
   FrameError feed(const CanFrame& c) { return rx_.accept(c); }
   std::uint32_t id_of(std::string_view name) const { return testing::message_named(*bus_.map, name)->id; }
 
-  DeviceBus bus_ = whole_bus(legacy::kCanMap);
+  DeviceBus bus_ = whole_bus(union_fixture::kCanMap);
   FrameEncoder enc_{bus_, Direction::kSensor};
   SetAssembler rx_{bus_, Direction::kSensor};
   msg::AnySensorFrame frame_{};
@@ -245,13 +225,6 @@ TEST_F(CanBadFrames, EachCauseIsRejectedAndCountedAndTheSetStillCompletes) {
   msg::AnySensorFrame out{};
   ASSERT_TRUE(rx_.take(out));
   EXPECT_TRUE(same_bits(out, frame_));
-}
-
-TEST_F(CanBadFrames, AbsentNodeFrameIsRejected) {
-  SetAssembler damper(device_bus(legacy::kCanMap, kNodeImu | kNodeDrive2), Direction::kSensor);
-  make_set(0);
-  ASSERT_EQ(frames_[1].id, id_of("DRIVE1_FB"));
-  EXPECT_EQ(damper.accept(frames_[1]), FrameError::kAbsentNode);
 }
 
 TEST_F(CanBadFrames, RepeatedCounterIsStaleAndSkippedCounterResynchronises) {

@@ -3,7 +3,7 @@
 // device: every byte of the generic sensor and actuator frame the device fills is carried by exactly one signal
 // of its direction, signals never overlap and fit their frame, lengths are valid CAN FD lengths without slack,
 // identifiers are unique standard ids, each direction's header comes last, and each value rides on the node
-// its table names, with its table's range and unit. And the transitional node filter of the legacy table.
+// its table names, with its table's range and unit. A device's bus carries its whole map.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -27,7 +27,6 @@ TEST(CanFrameMap, EveryTableHasAMapFoundByItsDeviceName) {
     const CanMap* m = find_can_map(d->device);
     ASSERT_NE(m, nullptr) << d->device;
     EXPECT_EQ(m->signals, d) << d->device;
-    EXPECT_EQ(m->legacy, d->device == "legacy");
   }
   EXPECT_EQ(find_can_map("no_such_device"), nullptr);
   std::set<std::uint64_t> fingerprints;
@@ -192,28 +191,16 @@ TEST(CanFrameMap, EachDirectionHasOneHeaderCarryingTheTickItComesLastAndHasTheHi
   }
 }
 
-TEST(CanFrameMap, TheLegacyNodeFilterKeepsADamperToItsFramesAndNoOtherMapIsFiltered) {
-  const CanMap& legacy = legacy::kCanMap;
-  // A single-gimbal damper (imu + drive2): sensor = IMU_FB, DRIVE2_FB, SENSOR_HUB; commands = DRIVE2_CMD,
-  // CONTROLLER_CMD.
-  const DeviceBus damper = device_bus(legacy, kNodeImu | kNodeDrive2);
-  EXPECT_EQ(damper.frames(Direction::kSensor), 3u);
-  EXPECT_EQ(damper.frames(Direction::kActuator), 2u);
-  std::vector<std::string_view> names;
-  for (std::size_t i = 0; i < legacy.messages.size(); ++i)
-    if (damper.has(i)) names.push_back(legacy.messages[i].name);
-  EXPECT_EQ(names, (std::vector<std::string_view>{"DRIVE2_CMD", "CONTROLLER_CMD", "IMU_FB", "DRIVE2_FB", "SENSOR_HUB"}));
-  // No node: the two headers only.
-  EXPECT_EQ(device_bus(legacy, 0).frames(Direction::kSensor), 1u);
-  EXPECT_EQ(device_bus(legacy, 0).frames(Direction::kActuator), 1u);
-  EXPECT_EQ(device_bus(legacy, kAllNodes).present, whole_bus(legacy).present);
-  EXPECT_EQ(damper.mask(Direction::kSensor) & damper.mask(Direction::kActuator), 0u);
-  // A device with a table of its own carries its table's frames, whatever node set it is given.
-  const CanMap& own = can_fixture::kCanMap;
-  EXPECT_FALSE(own.legacy);
-  EXPECT_EQ(device_bus(own, 0).present, whole_bus(own).present);
-  EXPECT_EQ(whole_bus(own).frames(Direction::kSensor) + whole_bus(own).frames(Direction::kActuator),
-            own.messages.size());
+TEST(CanFrameMap, ADeviceBusCarriesItsWholeMap) {
+  for (const CanMap* map : test_can_maps()) {
+    const DeviceBus bus = whole_bus(*map);
+    EXPECT_EQ(bus.frames(Direction::kSensor) + bus.frames(Direction::kActuator), map->messages.size())
+        << map->device;
+    EXPECT_EQ(bus.mask(Direction::kSensor) & bus.mask(Direction::kActuator), 0u) << map->device;
+    EXPECT_EQ(bus.mask(Direction::kSensor) | bus.mask(Direction::kActuator),
+              (std::uint32_t{1} << map->messages.size()) - 1u)
+        << map->device;
+  }
 }
 
 }  // namespace can_frame_map_test

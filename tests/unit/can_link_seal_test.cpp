@@ -7,10 +7,11 @@
 #include <optional>
 #include <span>
 
-#include "gyrostab_signals/legacy_can.hpp"
+#include "gyrostab_signals/union_fixture_can.hpp"
 #include "hil/can/frame_codec.hpp"
 #include "hil/can/link_seal.hpp"
 #include "hil/link/frame_endpoint.hpp"
+#include "tests/support/union_frames.hpp"
 
 namespace gyrostab::can {
 namespace can_link_seal_test {
@@ -19,8 +20,8 @@ using hil::GuardVerdict;
 using hil::LinkEnvelope;
 using hil::LinkGuard;
 
-// A ship damper's bus: the legacy map's IMU, drive 2 and the headers.
-constexpr DeviceBus kBus = device_bus(legacy::kCanMap, kNodeImu | kNodeDrive2);
+// The union fixture's bus: the IMU, two drives, the cluster (two frames) and the header.
+constexpr DeviceBus kBus = whole_bus(union_fixture::kCanMap);
 constexpr std::uint64_t kSession = 0x1a2b3c4d;
 constexpr std::uint64_t kControllerId = 0x0c0ffee1;
 
@@ -99,7 +100,7 @@ TEST(CanLinkSeal, TheHeaderCarriesTheEnvelopeAndTheSetPassesTheDecoder) {
   Sender plant(bus, kSession);
   Set s{};
   const std::size_t n = plant.make(0, 0.01, s);
-  ASSERT_EQ(n, 3u);
+  ASSERT_EQ(n, 6u);
   const CanFrame& h = s[n - 1];
   EXPECT_EQ(h.id, 0x2FFu) << "SENSOR_HUB";
   EXPECT_EQ(h.len, kHeaderLength);

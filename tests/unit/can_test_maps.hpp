@@ -1,7 +1,7 @@
 // The CAN maps and buses the unit tests walk (tests/unit/can_*_test.cpp): every map of the build
-// (gyrostab_signals/all_can_maps.hpp: each signal table's) and the tests' own device, a table of its own with
-// every shape of the layout (tests/signals/can_fixture_signals.toml); each carried whole, and the legacy map
-// also under every node set of its transitional node filter. And frames of random content that a bus carries
+// (gyrostab_signals/all_can_maps.hpp: each signal table's) and the tests' own devices, tables with every shape
+// of the layout (tests/signals/can_fixture_signals.toml) and every shipped device's signal shapes at once
+// (tests/signals/union_fixture_signals.toml); each carried whole. And frames of random content that a bus carries
 // exactly: doubles of every kind (NaN payloads, -0.0, subnormals, infinities) and, where a value rides as an
 // integer, integers of its type up to its extremes.
 #pragma once
@@ -17,6 +17,7 @@
 #include "gyrostab_signals/all_can_maps.hpp"
 #include "gyrostab_signals/all_devices.hpp"
 #include "gyrostab_signals/can_fixture_can.hpp"
+#include "gyrostab_signals/union_fixture_can.hpp"
 #include "hil/can/frame_map.hpp"
 #include "sim/random/seeded_rng.hpp"
 
@@ -25,6 +26,7 @@ namespace gyrostab::can::testing {
 inline std::vector<const CanMap*> test_can_maps() {
   std::vector<const CanMap*> maps(std::begin(kAllCanMaps), std::end(kAllCanMaps));
   maps.push_back(&can_fixture::kCanMap);
+  maps.push_back(&union_fixture::kCanMap);
   return maps;
 }
 
@@ -33,24 +35,17 @@ struct TestBus {
   std::string label;
 };
 
-// Every map whole; the legacy map also with each of its 16 node sets.
+// Every map, whole.
 inline std::vector<TestBus> test_buses() {
   std::vector<TestBus> out;
-  for (const CanMap* m : test_can_maps()) {
-    out.push_back({whole_bus(*m), std::string(m->device)});
-    if (!m->legacy) continue;
-    for (NodeSet n = 0; n < kAllNodes; ++n)
-      out.push_back({device_bus(*m, n), std::string(m->device) + " nodes " + std::to_string(n)});
-  }
+  for (const CanMap* m : test_can_maps()) out.push_back({whole_bus(*m), std::string(m->device)});
   return out;
 }
 
-// Where value i of a direction's frame rides (nullptr: no frame of the map carries it), and whether that
-// frame is on the bus.
+// Where value i of a direction's frame rides (nullptr: no frame of the map carries it).
 struct ValueOnBus {
   const MessageSpec* message{nullptr};
   const SignalSpec* signal{nullptr};
-  bool on_bus{false};
 };
 
 inline std::vector<ValueOnBus> values_on(const DeviceBus& bus, Direction d) {
@@ -62,7 +57,7 @@ inline std::vector<ValueOnBus> values_on(const DeviceBus& bus, Direction d) {
     for (const SignalSpec& s : m.signals) {
       if (s.field_offset < static_cast<int>(msg::kFrameHeaderBytes)) continue;
       const auto v = static_cast<std::size_t>(s.field_offset - static_cast<int>(msg::kFrameHeaderBytes)) / 8u;
-      if (v < n) out[v] = {&m, &s, bus.has(i)};
+      if (v < n) out[v] = {&m, &s};
     }
   }
   return out;
@@ -96,8 +91,7 @@ void fill_values(const DeviceBus& bus, Direction d, Frame& f, random::SeededRng&
   const std::vector<ValueOnBus> values = values_on(bus, d);
   for (std::size_t i = 0; i < values.size(); ++i) {
     const ValueOnBus& v = values[i];
-    // A value no frame of this bus carries must be zero (the legacy filter refuses anything else).
-    f.signal[i] = !v.on_bus ? 0.0 : v.signal->integer ? any_integer(*v.signal, rng) : any_double(rng);
+    f.signal[i] = v.signal == nullptr ? 0.0 : v.signal->integer ? any_integer(*v.signal, rng) : any_double(rng);
   }
 }
 

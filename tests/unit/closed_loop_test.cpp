@@ -4,6 +4,7 @@
 #include "tools/loop/closed_loop.hpp"
 
 #include "tests/support/test_ports.hpp"
+#include "tests/support/union_frames.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,6 +24,8 @@ struct EchoController {
 };
 
 struct LoggingDevice {
+  using SensorFrame = msg::SensorFrame;  // the union fixture's frames (tests/support/union_frames.hpp)
+  using ActuatorFrame = msg::ActuatorFrame;
   std::vector<double> applied_at;  // per tick: the torque the plant integrated with
   double current{-1.0};
   void sense(std::int64_t tick, msg::SensorFrame& f) {
@@ -32,7 +35,6 @@ struct LoggingDevice {
   void actuate(const msg::ActuatorFrame& a) { current = a.gimbal_torque_Nm[0]; }
   void advance(std::int64_t) { applied_at.push_back(current); }
   bool finite() const { return true; }
-  void record(double*) const {}
   msg::ActuatorFrame initial_command() const {
     msg::ActuatorFrame a{};
     a.gimbal_torque_Nm[0] = -1.0;

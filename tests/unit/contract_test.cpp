@@ -1,6 +1,8 @@
-// The interface contract (firmware/msg/): the layout the transports (LCM, CAN) and logs rely on — the shared
-// legacy table's typed frames (firmware/msg/legacy_signals.toml; the LCM types, CAN maps and DBC files are
-// generated from the same table). A failure here means the wire format changed.
+// The interface contract (firmware/msg/): the layout the transports (LCM, CAN) and logs rely on, on the typed
+// frames generated from a table — the tests' union fixture (tests/signals/union_fixture_signals.toml; a
+// device's LCM types, CAN map and DBC file are generated from its table the same way). A failure here means
+// the wire format changed. And every registered device has a table of its own: its signals and CAN map are
+// found by its name (tools/signals/device_signals.hpp, device_can_map.hpp).
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -11,9 +13,11 @@
 #include <iterator>
 #include <type_traits>
 
-#include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/fault_bits.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "tests/support/union_frames.hpp"
+#include "tools/devices/registry.hpp"
+#include "tools/signals/device_can_map.hpp"
+#include "tools/signals/device_signals.hpp"
 
 namespace gyrostab::msg {
 namespace contract_test {
@@ -211,6 +215,22 @@ TEST(Contract, AxisIndicesFollowTheBook) {
   EXPECT_EQ(std::size(SensorFrame{}.gimbal_angle_rad), kGimbalAxes);
   EXPECT_EQ(std::size(SensorFrame{}.carrier_rate_rad_s), kCarrierAxes);
   EXPECT_EQ(std::size(ActuatorFrame{}.gimbal_torque_Nm), kGimbalAxes);
+}
+
+TEST(Contract, EveryRegisteredDeviceHasASignalTableAndACanMap) {
+  ASSERT_FALSE(tools::devices().empty());
+  for (const tools::DeviceDescriptor* d : tools::devices()) {
+    const DeviceSignals* signals = tools::find_device_signals(d->name);
+    ASSERT_NE(signals, nullptr) << d->name << " has no signal table";
+    EXPECT_EQ(signals->device, d->name);
+    const can::CanMap* map = tools::find_device_can_map(d->name);
+    ASSERT_NE(map, nullptr) << d->name << " has no CAN map";
+    EXPECT_EQ(map->signals, signals) << d->name;
+  }
+  // No fallback: a name no table declares has no signals and no map.
+  EXPECT_EQ(tools::find_device_signals("no_such_device"), nullptr);
+  EXPECT_EQ(tools::find_device_can_map("no_such_device"), nullptr);
+  EXPECT_EQ(tools::find_device_signals("union_fixture"), nullptr) << "a test fixture is never a device";
 }
 
 }  // namespace contract_test

@@ -19,6 +19,7 @@
 #include "firmware/control/law_status_bits.hpp"
 #include "firmware/msg/fault_bits.hpp"
 #include "tests/support/alloc_counter.hpp"
+#include "tests/support/union_frames.hpp"
 
 namespace gyrostab::firmware {
 namespace controllers_test {
@@ -37,29 +38,8 @@ void set_header(Frame& f, std::uint64_t k) {
   f.sequence = static_cast<std::uint32_t>(k + 7);
 }
 
-// A plausible frame of the shared legacy table for tick k with every signal a device may read set, small and
-// varying with k.
-SensorFrame good_frame(std::uint64_t k) {
-  const double x = static_cast<double>(k % 100) * 1e-5;
-  SensorFrame f{};
-  f.tick = k;
-  f.time_ns = static_cast<std::int64_t>(k) * kTickNs;
-  f.sample_time_ns = f.time_ns;
-  f.sequence = static_cast<std::uint32_t>(k + 7);
-  f.carrier_angle_rad[msg::kRoll] = 0.02 + x;
-  f.carrier_rate_rad_s[msg::kRoll] = 0.01 - x;
-  f.gimbal_angle_rad[msg::kAxis1] = 0.01 + x;
-  f.gimbal_angle_rad[msg::kAxis2] = 0.03 - x;
-  f.gimbal_rate_rad_s[msg::kAxis1] = 0.02 + x;
-  f.gimbal_rate_rad_s[msg::kAxis2] = -0.01 + x;
-  f.motor_current_A[msg::kAxis1] = 0.1;
-  f.motor_current_A[msg::kAxis2] = -0.1;
-  f.rotor_speed_rad_s = 500.0;
-  return f;
-}
-
-// Every command at its signal table's safe value (written out for the legacy table: zero torques and
-// voltages, the brake on) and the safe-state bit.
+// Every command at its signal table's safe value (for the union fixture: zero torques and voltages, the
+// brake on) and the safe-state bit.
 template <class Frame>
 bool is_safe_command(const Frame& c) {
   const auto specs = msg::specs_of<Frame>();
@@ -68,19 +48,6 @@ bool is_safe_command(const Frame& c) {
   return msg::has(c.status, FaultBit::kSafeState);
 }
 static_assert(msg::specs_of<ActuatorFrame>()[msg::CommandIndex::precession_brake].safe == 1.0);
-
-// Traits of the devices still on the legacy table: their frames, a good frame, the law's main torque, and two
-// frames with a NaN in a signal the law reads.
-struct LegacyFrames {
-  using SensorFrame = msg::SensorFrame;
-  using ActuatorFrame = msg::ActuatorFrame;
-  static SensorFrame frame(std::uint64_t k) { return good_frame(k); }
-  static double torque(const ActuatorFrame& c) { return c.gimbal_torque_Nm[msg::kAxis2]; }
-  static void poison(SensorFrame& f5, SensorFrame& f6) {
-    f5.gimbal_rate_rad_s[msg::kAxis2] = std::numeric_limits<double>::quiet_NaN();
-    f6.carrier_rate_rad_s[msg::kRoll] = std::numeric_limits<double>::quiet_NaN();
-  }
-};
 
 // ------------------------------------------------------------------------------ one traits type per device
 // Each: the controller type, a default Config, and the expected command of a fresh controller on frame f

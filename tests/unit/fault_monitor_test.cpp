@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tests/support/alloc_counter.hpp"
+#include "tests/support/union_frames.hpp"
 
 namespace gyrostab::firmware {
 namespace fault_monitor_test {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "firmware/msg/sensor_frame.hpp"
+#include "tests/support/union_frames.hpp"
 #include "tools/log/frame_channel.hpp"
 #include "tools/run/frame_table.hpp"
 #include "tools/view/view_store.hpp"
@@ -17,7 +17,7 @@ namespace frame_channel_test {
 
 using tools::FrameDirection;
 
-const msg::DeviceSignals& device() { return msg::kSignals; }  // the shared legacy table
+const msg::DeviceSignals& device() { return msg::kSignals; }  // the union fixture
 
 msg::AnySensorFrame sensor_frame(std::int64_t k) {
   msg::AnySensorFrame f{};
@@ -44,7 +44,7 @@ msg::AnyActuatorFrame actuator_frame(std::int64_t k) {
 TEST(FrameChannel, HeaderThenTheTablesSignalsWithTheirElements) {
   const tools::ChannelInfo c = tools::frame_channel(device(), FrameDirection::kSensor);
   EXPECT_EQ(c.topic, "/gyrostab/sensor");
-  EXPECT_EQ(c.title, "gyrostab.legacy.sensor");
+  EXPECT_EQ(c.title, "gyrostab.union_fixture.sensor");
   ASSERT_EQ(c.signals.size(), tools::frame_width(device(), FrameDirection::kSensor));
   EXPECT_EQ(tools::label_of(c.signals[0]), "time_ns");
   EXPECT_TRUE(c.signals[3].integer);

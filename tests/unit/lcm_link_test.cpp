@@ -19,6 +19,7 @@
 #include "tests/support/alloc_counter.hpp"
 #include "tools/run/link_cli.hpp"
 #include "tools/run/command_wait.hpp"
+#include "tests/support/union_frames.hpp"
 
 namespace gyrostab {
 namespace lcm_link_test {

@@ -13,6 +13,7 @@
 #include "hil/link/frame_endpoint.hpp"
 #include "hil/link/link_guard.hpp"
 #include "hil/link/memory_bus.hpp"
+#include "tests/support/union_frames.hpp"
 
 namespace gyrostab {
 namespace link_guard_test {

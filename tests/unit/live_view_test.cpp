@@ -94,24 +94,19 @@ TEST(ViewStore, FewRowsOneRowPerBucket) {
   for (std::int64_t k = 50; k <= 1000; k += 50) EXPECT_EQ(small.bucket_of(k), k / 50) << k;
 }
 
-TEST(ViewMeta, LimitsPlacedOnTheirSignals) {
+TEST(ViewMeta, LimitsPlacedOnlyWhereATableDeclaresThem) {
+  // Columns no table declares: a limit is never placed by its name, it stays unplaced.
   const std::vector<std::string> ship{"t_s", "roll_rad", "precession_rad", "precession_torque_Nm"};
-  EXPECT_EQ(tools::view::limit_signal("precession_stop_rad", ship), "precession_rad");
-  EXPECT_EQ(tools::view::limit_signal("precession_soft_limit_rad", ship), "precession_rad");
-  EXPECT_EQ(tools::view::limit_signal("precession_torque_limit_Nm", ship), "precession_torque_Nm");
-  const std::vector<std::string> two{"t_s", "motor_torque_x_Nm", "motor_torque_y_Nm"};
-  EXPECT_EQ(tools::view::limit_signal("motor_torque_limit_Nm", two), "");  // two candidates: not placed
-  const std::vector<std::string> one{"t_s", "motor_torque_x_Nm", "beta_rad"};
-  EXPECT_EQ(tools::view::limit_signal("motor_torque_limit_Nm", one), "motor_torque_x_Nm");
-  // A device on the legacy table: no columns declared, limits placed by name (transitional).
-  const tools::ChannelInfo legacy{"/gyrostab/signals", "t", tools::signals_of_columns(ship)};
+  const tools::ChannelInfo undeclared{"/gyrostab/signals", "t", tools::signals_of_columns(ship)};
   const nlohmann::json placed =
-      tools::view::placed_limits({{"precession_stop_rad", 1.2}, {"off", 0}, {"bad", "x"}}, legacy);
+      tools::view::placed_limits({{"precession_stop_rad", 1.2}, {"off", 0}, {"bad", "x"}}, undeclared);
   ASSERT_EQ(placed.size(), 1u);
   EXPECT_EQ(placed[0]["label"], "end stop");
-  EXPECT_EQ(placed[0]["signal"], "precession_rad");
-  EXPECT_EQ(placed[0]["placed_by"], "name");
+  EXPECT_TRUE(placed[0]["signal"].is_null());
+  EXPECT_EQ(placed[0]["placed_by"], "");
   EXPECT_EQ(placed[0]["channel"], "/gyrostab/signals");
+  EXPECT_FALSE(undeclared.signals[1].declared);
+  EXPECT_FALSE(undeclared.signals[1].unit.has_value());
 }
 
 // A device converted to its own table: the columns' units, symbols and limits come from its [[column]]s.
@@ -133,8 +128,8 @@ TEST(SignalChannel, ColumnsFromTheSignalTable) {
   EXPECT_TRUE(s[1].declared);
   EXPECT_EQ(s[2].unit, "N m");
   EXPECT_EQ(s[3].unit, "N");  // no suffix rule knows "_N": only the table does
-  EXPECT_FALSE(s[4].declared);  // not in the table: its unit from its name
-  EXPECT_EQ(s[4].unit, "rad");
+  EXPECT_FALSE(s[4].declared);  // not in the table: nothing but its name is known
+  EXPECT_FALSE(s[4].unit.has_value());
   // Limits go where the table says, even where a name would say otherwise ("torque_max_Nm" names no column).
   const tools::ChannelInfo c{"/gyrostab/signals", "t", s};
   const nlohmann::json placed = tools::view::placed_limits(
@@ -146,16 +141,8 @@ TEST(SignalChannel, ColumnsFromTheSignalTable) {
   EXPECT_EQ(where["tilt_stop_rad"], "tilt_rad/table");
   EXPECT_EQ(where["tilt_soft_rad"], "tilt_rad/table");
   EXPECT_EQ(where["torque_max_Nm"], "motor_torque_Nm/table");
-  EXPECT_EQ(where["extra_stop_rad"], "extra_rad/name");  // the one undeclared column, by name
+  EXPECT_EQ(where["extra_stop_rad"], "-");  // never placed by a name
   EXPECT_EQ(where["nowhere_limit_m"], "-");
-}
-
-TEST(SignalChannel, UnitsFromColumnNames) {
-  EXPECT_EQ(tools::unit_from_column_name("roll_rate_rad_s"), "rad/s");
-  EXPECT_EQ(tools::unit_from_column_name("roll_rad"), "rad");
-  EXPECT_EQ(tools::unit_from_column_name("wave_moment_Nm"), "N m");
-  EXPECT_EQ(tools::unit_from_column_name("t_s"), "s");
-  EXPECT_EQ(tools::unit_from_column_name("status_bits"), std::nullopt);
 }
 
 TEST(SignalChannel, JsonNumbersRoundTrip) {

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "firmware/link/siphash24.hpp"
-#include "firmware/msg/actuator_frame.hpp"
+#include "tests/support/union_frames.hpp"
 #include "sim/random/seeded_rng.hpp"
 
 namespace gyrostab::firmware::link {

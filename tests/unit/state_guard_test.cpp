@@ -4,6 +4,7 @@
 #include "tools/loop/closed_loop.hpp"
 
 #include "tests/support/test_ports.hpp"
+#include "tests/support/union_frames.hpp"
 
 #include <gtest/gtest.h>
 
@@ -21,6 +22,8 @@ struct NullController {
 // x = [alpha, beta, beta_rate]: alpha grows linearly, beta_rate doubles each tick and is forced to +inf at
 // tick 6 (beta_rate was 2^6 = 64 at the end of tick 5), beta goes NaN one tick later (never reached).
 struct BlowingUpDevice {
+  using SensorFrame = msg::SensorFrame;  // the union fixture's frames (tests/support/union_frames.hpp)
+  using ActuatorFrame = msg::ActuatorFrame;
   static constexpr int kGuardedStates = 3;
   static const char* state_name(int i) {
     static const char* const names[] = {"alpha_rad", "beta_rad", "beta_rate_rad_s"};
@@ -37,7 +40,6 @@ struct BlowingUpDevice {
     if (k == 7) x[1] = std::nan("");
   }
   bool finite() const { return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]); }
-  void record(double*) const {}
   msg::ActuatorFrame initial_command() const { return {}; }
 };
 
@@ -64,12 +66,13 @@ TEST(StateGuard, NamesTheFirstNonFiniteComponentAndItsLastFiniteValue) {
 
 // Without the optional part of the concept the guard still stops at the tick and says so.
 struct AnonymousDevice {
+  using SensorFrame = msg::SensorFrame;  // the union fixture's frames (tests/support/union_frames.hpp)
+  using ActuatorFrame = msg::ActuatorFrame;
   int ticks{0};
   void sense(std::int64_t, msg::SensorFrame& f) { f = msg::SensorFrame{}; }
   void actuate(const msg::ActuatorFrame&) {}
   void advance(std::int64_t) { ++ticks; }
   bool finite() const { return ticks < 4; }
-  void record(double*) const {}
   msg::ActuatorFrame initial_command() const { return {}; }
 };
 

@@ -8,11 +8,11 @@
 #include "firmware/link/cobs.hpp"
 #include "firmware/link/crc32.hpp"
 #include "firmware/link/target_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "tests/support/union_frames.hpp"
 
 namespace gyrostab {
 namespace {
-constexpr firmware::link::TargetFrameSizes kLegacySizes{sizeof(msg::SensorFrame), sizeof(msg::ActuatorFrame)};
+constexpr firmware::link::TargetFrameSizes kUnionSizes{sizeof(msg::SensorFrame), sizeof(msg::ActuatorFrame)};
 }  // namespace
 namespace target_frame_test {
 
@@ -62,7 +62,7 @@ TEST(TargetFrame, CobsRoundTripsEveryLengthAndHasNoZero) {
 
 TEST(TargetFrame, SensorFrameRoundTripsBitForBit) {
   TargetFrameEncoder enc(0x1234, 0xABCD);
-  TargetFrameDecoder dec(/*from_host=*/true, kLegacySizes);
+  TargetFrameDecoder dec(/*from_host=*/true, kUnionSizes);
   for (std::uint64_t k = 0; k < 40; ++k) {  // the alive counter wraps twice
     const msg::SensorFrame f = sample(k);
     const auto wire = bytes(enc.encode(TargetFrameKind::kSensor, f));
@@ -86,7 +86,7 @@ TEST(TargetFrame, SensorFrameRoundTripsBitForBit) {
 
 TEST(TargetFrame, EveryRefusalCauseIsCounted) {
   TargetFrameEncoder enc(7, 9);
-  TargetFrameDecoder dec(/*from_host=*/true, kLegacySizes);
+  TargetFrameDecoder dec(/*from_host=*/true, kUnionSizes);
   TargetFrameView v;
   const auto first = bytes(enc.encode(TargetFrameKind::kSensor, sample(0)));
   ASSERT_EQ(dec.judge(body(first), v), TargetRxVerdict::kOk);
@@ -129,7 +129,7 @@ TEST(TargetFrame, EveryRefusalCauseIsCounted) {
 
 TEST(TargetFrame, ReservedBitsAreRefused) {
   TargetFrameEncoder enc(7, 9);
-  TargetFrameDecoder dec(/*from_host=*/true, kLegacySizes);
+  TargetFrameDecoder dec(/*from_host=*/true, kUnionSizes);
   // Rebuild a frame with a high nibble in the alive byte and a valid CRC.
   std::vector<std::uint8_t> raw(firmware::link::kTargetHeaderBytes + firmware::link::kTargetCrcBytes);
   raw[0] = static_cast<std::uint8_t>(TargetFrameKind::kStop);
@@ -145,7 +145,7 @@ TEST(TargetFrame, ReservedBitsAreRefused) {
 }
 
 TEST(TargetFrame, OverlongFrameIsDroppedUpToItsZero) {
-  TargetFrameDecoder dec(/*from_host=*/true, kLegacySizes);
+  TargetFrameDecoder dec(/*from_host=*/true, kUnionSizes);
   std::span<const std::uint8_t> frame;
   for (std::size_t i = 0; i < firmware::link::kMaxTargetWire + 10; ++i) ASSERT_FALSE(dec.collect(0x41, frame));
   EXPECT_FALSE(dec.collect(0, frame));

@@ -12,7 +12,6 @@
 #include <type_traits>
 #include <vector>
 
-#include "hil/can/frame_map.hpp"
 #include "hil/link/actuator_frame_check.hpp"
 #include "sim/motion/scene_base_motion.hpp"
 #include "tools/loop/controller_port.hpp"
@@ -76,8 +75,6 @@ struct DeviceDescriptor {
   std::unique_ptr<DeviceScene> (*read)(SceneReader& reader);
   // The scene keys, for docs/scenes.md (generated: tools/scene/scene_doc.hpp).
   SceneDoc (*doc)();
-  // The nodes of the device's hardware on the CAN bus, besides the sensor hub and the controller.
-  can::NodeSet can_nodes;
   // `gyrostab accuracy` on a scene of this device; nullptr: the study does not take it.
   int (*accuracy)(SceneReader& reader, const AccuracyRequest& request){nullptr};
 };

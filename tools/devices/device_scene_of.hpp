@@ -5,8 +5,7 @@
 //   using Scene = ...;  using Binding = ...;  using Controller = ...;
 //   the CSV columns: the binding's Record (its signal table's columns, gyrostab_signals/<device>_outputs.hpp),
 //     with (optional) static bool column_option(const Scene&, std::string_view when) for columns that exist
-//     only with an option; or, for a device still on the legacy frame,
-//   static std::vector<std::string> columns(const Scene&);
+//     only with an option;
 //   (optional) static nlohmann::json limits(const Scene&);               // report.json "limits"
 //   (optional) static hil::ActuatorLimits actuator_limits(const Scene&); // what a drive accepts
 //   (optional) static std::unique_ptr<PlantPort> make_plant(const Scene&, const PlantOptions&);
@@ -33,24 +32,16 @@ class DeviceSceneOf final : public DeviceScene {
 
   const LoopConfig& loop() const override { return s_->loop; }
   std::vector<std::string> columns() const override {
-    if constexpr (requires { typename Traits::Binding::Record; }) {
-      std::vector<std::string> c;
-      for (const ColumnSpec& spec : table_columns()) {
-        if (spec.when.empty() || column_option(spec.when)) c.emplace_back(spec.name);
-      }
-      return c;
-    } else {
-      return Traits::columns(*s_);
+    std::vector<std::string> c;
+    for (const ColumnSpec& spec : table_columns()) {
+      if (spec.when.empty() || column_option(spec.when)) c.emplace_back(spec.name);
     }
+    return c;
   }
   std::vector<std::string> row_columns() const override {
-    if constexpr (requires { typename Traits::Binding::Record; }) {
-      std::vector<std::string> c;
-      for (const ColumnSpec& spec : table_columns()) c.emplace_back(spec.name);
-      return c;
-    } else {
-      return Traits::columns(*s_);
-    }
+    std::vector<std::string> c;
+    for (const ColumnSpec& spec : table_columns()) c.emplace_back(spec.name);
+    return c;
   }
   hil::ActuatorLimits actuator_limits() const override {
     if constexpr (requires(const Scene& s) { Traits::actuator_limits(s); }) {
@@ -86,9 +77,7 @@ class DeviceSceneOf final : public DeviceScene {
   }
 
  private:
-  static constexpr std::span<const ColumnSpec> table_columns()
-    requires requires { typename Traits::Binding::Record; }
-  {
+  static constexpr std::span<const ColumnSpec> table_columns() {
     return device_outputs(static_cast<const typename Traits::Binding::Record*>(nullptr)).columns;
   }
   bool column_option(std::string_view when) const {

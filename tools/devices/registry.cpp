@@ -42,13 +42,8 @@ const DeviceDescriptor* find_device(std::string_view name) {
   return nullptr;
 }
 
-can::NodeSet can_nodes_of(std::string_view device) {
-  const DeviceDescriptor* d = find_device(device);
-  return d != nullptr ? d->can_nodes : can::kAllNodes;
-}
-
 const msg::DeviceSignals& signals_of(const DeviceScene& scene) {
-  return find_device_signals(scene.loop().device);
+  return *find_device_signals(scene.loop().device);
 }
 
 }  // namespace gyrostab::tools

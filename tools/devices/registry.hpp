@@ -15,10 +15,8 @@ std::span<const DeviceDescriptor* const> devices();
 // nullptr if no device has that name.
 const DeviceDescriptor* find_device(std::string_view name);
 
-// The device's CAN nodes; every node for a name no device has.
-can::NodeSet can_nodes_of(std::string_view device);
-
-// The signals of the scene's device: its frames' layout on every transport.
+// The signals of the scene's device: its frames' layout on every transport (every registered device has a
+// signal table: tests/unit/contract_test.cpp).
 const msg::DeviceSignals& signals_of(const DeviceScene& scene);
 
 }  // namespace gyrostab::tools

@@ -224,7 +224,12 @@ ReadStatus BusLogReader::open(const std::string& path) {
     return fail(ReadStatus::kCorrupt, e.offset, "the scene event does not decode: " + why);
   }
   suffix_ = ch.substr(base.size());
-  signals_ = &find_device_signals(scene_.device);
+  signals_ = find_device_signals(scene_.device);
+  if (signals_ == nullptr) {
+    return fail(ReadStatus::kCorrupt, e.offset,
+                "the log's device '" + scene_.device + "' has no signal table in this build: its frames cannot be "
+                "decoded");
+  }
   sensor_channel_ = channel(kSensorChannel, suffix_);
   actuator_channel_ = channel(kActuatorChannel, suffix_);
   end_channel_ = channel(kEndChannel, suffix_);

@@ -51,7 +51,11 @@ bool BusLogWriter::open(const std::string& path, const SceneEvent& scene, const 
     error = "channel suffix too long (LCM logs hold channel names up to 999 bytes)";
     return false;
   }
-  signals_ = &find_device_signals(scene.device);
+  signals_ = find_device_signals(scene.device);
+  if (signals_ == nullptr) {
+    error = "device " + scene.device + " has no signal table: its frames cannot be logged";
+    return false;
+  }
   errno = 0;
   log_ = lcm_eventlog_create(path.c_str(), "w");
   if (log_ == nullptr) {

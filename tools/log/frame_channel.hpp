@@ -2,8 +2,8 @@
 // charts): per direction the header fields after the tick (time_ns, sample_time_ns or sensor_tick, sequence,
 // status) and every signal of the device's table in frame order, an array signal as one array field whose
 // elements Foxglove addresses as `name[i]` and PlotJuggler lists as `name[i]`. Names, symbols, units, ranges
-// and descriptions are the table's (msg::DeviceSignals), so the channel follows a device as it converts from
-// the legacy table to its own. Docs: docs/mcap.md.
+// and descriptions are the table's (msg::DeviceSignals), so a signal added to a table is on the channel with
+// nothing written here. Docs: docs/mcap.md.
 #pragma once
 
 #include <cstddef>

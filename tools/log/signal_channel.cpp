@@ -12,21 +12,6 @@ std::string label_of(const SignalInfo& s) {
   return s.count > 1 ? s.name + "[" + std::to_string(s.element) + "]" : s.name;
 }
 
-std::optional<std::string> unit_from_column_name(const std::string& name) {
-  // Longest suffix first: "_rad_s" before "_s".
-  static const std::pair<const char*, const char*> kSuffixes[] = {
-      {"_rad_s2", "rad/s²"}, {"_rad_s", "rad/s"}, {"_deg_s", "°/s"}, {"_m_s2", "m/s²"}, {"_m_s", "m/s"},
-      {"_Nms", "N m s"},     {"_Nm", "N m"},      {"_rad", "rad"},   {"_deg", "°"},     {"_m", "m"},
-      {"_s", "s"},           {"_V", "V"},         {"_A", "A"},       {"_W", "W"},       {"_kg", "kg"},
-      {"_Hz", "Hz"},
-  };
-  for (const auto& [suffix, unit] : kSuffixes) {
-    const std::string s(suffix);
-    if (name.size() > s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0) return std::string(unit);
-  }
-  return std::nullopt;
-}
-
 namespace {
 
 std::vector<std::string> split_keys(std::string_view list) {
@@ -66,8 +51,6 @@ std::vector<SignalInfo> signals_of_columns(const std::vector<std::string>& colum
       if (!spec->description.empty()) s.description = std::string(spec->description);
       s.limits = split_keys(spec->limits);
       s.declared = true;
-    } else {
-      s.unit = unit_from_column_name(c);  // transitional: the device's table declares no columns yet
     }
     out.push_back(std::move(s));
   }

@@ -1,9 +1,7 @@
 // A channel of a run, as the MCAP export and the live view see it: a name, a list of signals (name, and where
 // known unit, symbol, range and description) and rows of doubles stamped with a tick. Two kinds exist:
 //   - the recorded signals (signals.csv's columns): their names, units, symbols and limits come from the
-//     device's signal table ([[column]], tools/signals/device_outputs.hpp) once the device has one; a device
-//     still on the shared legacy table has no columns declared, and its units are read from the column names'
-//     suffixes instead (transitional: unit_from_column_name, marked `declared = false`);
+//     device's signal table ([[column]], tools/signals/device_outputs.hpp);
 //   - the frames of each direction (tools/log/frame_channel.hpp): the header fields and every signal of the
 //     device's table (msg::SignalSpec), an array signal as one array field.
 #pragma once
@@ -27,7 +25,7 @@ struct SignalInfo {
   std::uint8_t count{1};                   // elements of its array field (1: a scalar)
   std::uint8_t element{0};                 // this value's index in it
   bool integer{false};                     // an integer on the wire (a frame header's ticks, ns, counters, bits)
-  bool declared{false};                    // described by a signal table (else by its column name: transitional)
+  bool declared{false};                    // described by a signal table (else only its name is known)
   std::vector<std::string> limits;         // report.json "limits" keys drawn with it, as its table declares
 };
 
@@ -49,11 +47,8 @@ class ChannelRows {
   virtual double value(std::size_t row, std::size_t signal) const = 0;
 };
 
-// The unit a column's name ends in (`roll_rate_rad_s` -> "rad/s"), or nothing when its suffix is not one of
-// the few unambiguous ones. Transitional: only for devices whose signal table declares no columns yet.
-std::optional<std::string> unit_from_column_name(const std::string& name);
 // SignalInfo of the recorder's columns ("t_s" first): from the table's [[column]]s where `outputs` declares the
-// column, else (outputs nullptr: a device on the legacy table) the unit from the name.
+// column, else only its name (declared = false).
 std::vector<SignalInfo> signals_of_columns(const std::vector<std::string>& columns,
                                            const DeviceOutputs* outputs = nullptr);
 

@@ -13,8 +13,7 @@
 #include <array>
 #include <cstdint>
 
-#include "firmware/msg/actuator_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
+#include "firmware/msg/any_frame.hpp"
 #include "sim/plants/sensor_frame_header.hpp"
 #include "tools/loop/controller_port.hpp"
 #include "tools/loop/loop_outcome.hpp"

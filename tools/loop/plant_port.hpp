@@ -5,14 +5,14 @@
 //
 // A device implements the plant concept below and is wrapped by PlantPortOf<Binding>; the run modes see the
 // device-independent frames (firmware/msg/any_frame.hpp), the binding its own typed ones:
-//   using SensorFrame = ...; using ActuatorFrame = ...;     // the device's typed frames (default: the shared
-//                                                           // legacy frames, firmware/msg/sensor_frame.hpp)
+//   using SensorFrame = ...; using ActuatorFrame = ...;     // the device's typed frames
+//                                                           // (gyrostab_signals/<device>_frames.hpp)
 //   void sense(std::int64_t tick, SensorFrame& out);        // the sensor frame of tick k
 //   void actuate(const ActuatorFrame& cmd);                 // the command held over [k, k + 1)
 //   void advance(std::int64_t tick);                        // integrate [k, k + 1) and feed the meters
 //   bool finite() const;
-//   using Record = ...; void record(Record& row) const;     // one CSV row: the signal table's columns by name
-//                                                           // (a legacy binding: void record(double* row))
+//   (optional) using Record = ...; void record(Record& row) const;   // one CSV row: the signal table's
+//                                                           // columns by name; none: it records nothing
 //   (optional) nlohmann::json figures() const;              // report.json "figures"
 //   (optional) kGuardedStates, state_name(i), state_value(i)   tools/loop/state_guard.hpp
 //   (optional) nlohmann::json report_extra() const;         // blocks beside "figures" ("plant", "drift", ...)
@@ -28,9 +28,7 @@
 #include <nlohmann/json.hpp>
 #include <utility>
 
-#include "firmware/msg/actuator_frame.hpp"
 #include "firmware/msg/any_frame.hpp"
-#include "firmware/msg/sensor_frame.hpp"
 #include "tools/loop/loop_outcome.hpp"
 #include "tools/loop/state_guard.hpp"
 
@@ -53,15 +51,9 @@ class PlantPort {
   virtual nlohmann::json extra_timing(const LoopOutcome& outcome) const = 0;
 };
 
-// The typed frames a binding exchanges: its own, or the shared legacy ones.
+// The typed frames a binding exchanges: its own, generated from its signal table.
 template <class Binding>
 struct BindingFrames {
-  using Sensor = msg::SensorFrame;
-  using Actuator = msg::ActuatorFrame;
-};
-template <class Binding>
-  requires requires { typename Binding::SensorFrame; }
-struct BindingFrames<Binding> {
   using Sensor = typename Binding::SensorFrame;
   using Actuator = typename Binding::ActuatorFrame;
 };
@@ -95,8 +87,6 @@ class PlantPortOf final : public PlantPort {
       typename Binding::Record r{};
       b_.record(r);
       std::memcpy(row, &r, sizeof r);
-    } else {
-      b_.record(row);
     }
   }
   msg::AnyActuatorFrame initial_command() const override {

@@ -1,15 +1,14 @@
 // Opening the CAN link of a plant or controller process (`gyrostab plant|controller SCENE --can-if IF`,
 // `gyrostab run SCENE --transport can`; docs/can.md):
-//   1. the device's bus: the CAN map generated from its signal table (tools/signals/device_can_map.hpp); a
-//      device still on the shared legacy table carries only the frames of the nodes its hardware has (its
-//      descriptor's can_nodes; transitional, deleted with the legacy table);
+//   1. the device's bus: the CAN map generated from its signal table (tools/signals/device_can_map.hpp), every
+//      frame of it;
 //   2. the bus-load check: one sensor set and one command set per controller tick, worst-case bit stuffing, at
 //      the configured bit rates (default 1 Mbit/s arbitration, 5 Mbit/s data); above 70 % the scene is refused
 //      (exit 2) with the numbers, before anything is sent;
 //   3. the SocketCAN socket on IF (CAN FD, kernel filter on the ids this side receives unless --can-no-filter,
 //      error frames, kernel timestamps);
 //   4. with --can-log FILE, the candump log, headed by comment lines that name the scene, its device, seed,
-//      tick, the map (its table and fingerprint) and nodes, and carry the scene text (base64) so that
+//      tick, the map (its table and fingerprint) and the bus's nodes, and carry the scene text (base64) so that
 //      `gyrostab replay FILE` needs nothing else.
 // Start-up only (allocates); the loop then runs through hil::FrameEndpoint<can::CanBusTransport>
 // (hil/can/can_endpoint.hpp).
@@ -33,11 +32,8 @@
 
 namespace gyrostab::tools {
 
-// The frames a device's bus carries: its map, and for a device on the legacy table (transitional) only the
-// frames of the nodes its descriptor lists.
-inline can::DeviceBus can_bus_of(std::string_view device) {
-  return can::device_bus(find_device_can_map(device), can_nodes_of(device));
-}
+// The frames a device's bus carries: its map, whole; no bus (map nullptr) for a name no table declares.
+inline can::DeviceBus can_bus_of(std::string_view device) { return can::DeviceBus{find_device_can_map(device)}; }
 
 // The "can-map" header line of a candump log: the table the map was generated from and its fingerprint.
 inline std::string can_map_text(const can::CanMap& m) {
@@ -72,6 +68,7 @@ inline std::string base64(const std::string& in) {
 // The bus load of a scene's device at its tick rate; "" if acceptable, else the refusal message.
 inline std::string can_bus_load_problem(const LoopConfig& loop, const TransportOptions& t, can::BusLoad& load) {
   const can::DeviceBus bus = can_bus_of(loop.device);
+  if (bus.map == nullptr) return "device " + loop.device + " has no signal table, so no CAN map";
   const can::BusTiming timing{t.can_bitrate, t.can_data_bitrate};
   const double rate_hz = 1e9 / static_cast<double>(loop.tick_ns);
   load = can::bus_load(bus, rate_hz, timing);
@@ -111,8 +108,8 @@ inline int open_can_link(can::CanBusTransport& bus, const LoopConfig& loop, cons
   can::SocketCanConfig config;
   config.ifname = t.can_if;
   std::vector<std::uint32_t> ids;
-  for (std::size_t i = 0; i < bus.bus.messages().size(); ++i)
-    if (bus.bus.messages()[i].direction == rx && bus.bus.has(i)) ids.push_back(bus.bus.messages()[i].id);
+  for (const can::MessageSpec& m : bus.bus.messages())
+    if (m.direction == rx) ids.push_back(m.id);
   if (t.can_filter) config.receive_ids = ids;
   std::string error;
   if (!bus.socket.open(config, error)) {
@@ -135,8 +132,7 @@ inline int open_can_link(can::CanBusTransport& bus, const LoopConfig& loop, cons
         "seed " + std::to_string(loop.seed),
         "tick_ns " + std::to_string(loop.tick_ns),
         "can-map " + can_map_text(*bus.bus.map),
-        "nodes " + std::to_string(static_cast<int>(can_nodes_of(loop.device))) + " (" + can::bus_node_list(bus.bus) +
-            ")",
+        "nodes " + can::bus_node_list(bus.bus),
         std::string("clock ") + (t.real_time ? "realtime" : "simulated"),
     };
     const std::string b64 = base64(text);

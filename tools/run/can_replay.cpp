@@ -36,7 +36,13 @@ int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop
   }
   // The frames are decoded with the map of the scene's device: the one the log was recorded with, or the log is
   // refused (its identifiers and positions would mean something else).
-  const can::CanMap& map = find_device_can_map(loop.device);
+  const can::CanMap* found = find_device_can_map(loop.device);
+  if (found == nullptr) {
+    std::fprintf(stderr, "gyrostab: %s: device %s has no signal table in this build, so no CAN map\n", path.c_str(),
+                 loop.device.c_str());
+    return kReplayExitBadLog;
+  }
+  const can::CanMap& map = *found;
   const std::string version = candump_header(file, "gyrostab-candump");
   if (!version.empty() && version != "2") {
     std::fprintf(stderr, "gyrostab: %s: a gyrostab candump log of version %s, recorded with another CAN map "
@@ -51,12 +57,7 @@ int replay_controller_candump(ControllerPort& controller, const LoopConfig& loop
                  path.c_str(), recorded.c_str(), loop.device.c_str(), can_map_text(map).c_str());
     return kReplayExitBadLog;
   }
-  // Transitional (legacy table): the nodes the recording's device had, else its descriptor's.
-  can::NodeSet nodes = can_nodes_of(loop.device);
-  if (const std::string n = candump_header(file, "nodes"); !n.empty()) {
-    nodes = static_cast<can::NodeSet>(std::atoi(n.c_str()) & can::kAllNodes);
-  }
-  const can::DeviceBus bus = can::device_bus(map, nodes);
+  const can::DeviceBus bus = can::whole_bus(map);
   if (map.signals->device != signals.device) {
     std::fprintf(stderr, "gyrostab: %s: device %s's CAN map carries the frames of table %s, not %s\n", path.c_str(),
                  loop.device.c_str(), std::string(map.signals->device).c_str(), std::string(signals.device).c_str());

@@ -236,11 +236,15 @@ bool write_mcap_from_outputs(const std::string& path, const std::string& out_dir
     std::string file;
   };
   std::vector<Frames> frames;
-  const msg::DeviceSignals& dev = find_device_signals(device);
+  const msg::DeviceSignals* dev = find_device_signals(device);
   for (const FrameDirection d : {FrameDirection::kSensor, FrameDirection::kActuator}) {
     const std::string file = out_dir + "/" + (d == FrameDirection::kSensor ? kSensorFramesCsv : kActuatorFramesCsv);
     if (!std::filesystem::exists(file)) continue;
-    Frames fr{frame_channel(dev, d), {}, file};
+    if (dev == nullptr) {
+      error = "device " + device + " has no signal table: its frames (" + file + ") cannot be written";
+      return false;
+    }
+    Frames fr{frame_channel(*dev, d), {}, file};
     fr.rows.first_is_tick = true;
     if (!fr.rows.read(file, error)) return false;
     std::vector<std::string> expected{"tick"};

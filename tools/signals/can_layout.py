@@ -32,7 +32,7 @@ header last: the order frames are sent in.
 For other generators (the interface control document): layout(table) returns the Message list — id, name,
 sender, node, direction, length, header, comment and the signals, each a CanSignal with its start bit, length,
 kind, byte offset in the generic frame, range, unit, comment and, for a table value, the table's signal name,
-element and value index. messages_for_nodes() applies the legacy table's node filter for a device's nodes.
+element and value index.
 
     python3 tools/signals/can_layout.py TABLE...    prints each table's frames and signals
 """
@@ -270,13 +270,6 @@ def layout(t: Table) -> list[Message]:
         body = sorted((m for m in frames if not m.header), key=lambda m: m.id)
         messages += body + [m for m in frames if m.header]
     return messages
-
-
-def messages_for_nodes(messages: list[Message], nodes: set[str]) -> list[Message]:
-    """Transitional, for the shared legacy table only: the frames of a device that has only these nodes
-    (DeviceDescriptor::can_nodes; the sensor hub and the controller are always there)."""
-    keep = set(nodes) | {"sensor_hub", "controller"}
-    return [m for m in messages if m.node in keep]
 
 
 def fingerprint(messages: list[Message]) -> int:

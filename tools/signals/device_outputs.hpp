@@ -1,7 +1,6 @@
 // A device's recorded columns and report figures by its [scene] device name, as its signal table declares them
-// (gyrostab_signals/all_outputs.hpp, generated from every table of the build). nullptr for a device whose table
-// declares no columns — every device still on the shared legacy table (firmware/msg/legacy_signals.toml): its
-// consumers then fall back to what the column names say (tools/log/signal_channel.hpp), until it converts.
+// (gyrostab_signals/all_outputs.hpp, generated from every table of the build). nullptr for a name no table
+// declares, or a table that declares no columns.
 #pragma once
 
 #include <string_view>

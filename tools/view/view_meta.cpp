@@ -31,32 +31,9 @@ std::string limit_label(const std::string& key) {
 
 }  // namespace
 
-std::string limit_signal(const std::string& key, const std::vector<std::string>& columns) {
-  const std::vector<std::string> w = words(key);
-  std::string stripped;
-  for (const std::string& x : w) {
-    if (x == "limit" || x == "stop" || x == "soft") continue;
-    stripped += (stripped.empty() ? "" : "_") + x;
-  }
-  if (std::find(columns.begin(), columns.end(), stripped) != columns.end()) return stripped;
-  const auto unit = unit_from_column_name(key);
-  if (!unit || w.empty()) return "";
-  std::string found;
-  for (const std::string& c : columns) {
-    if (c.rfind(w.front() + "_", 0) == 0 && unit_from_column_name(c) == unit) {
-      if (!found.empty()) return "";  // two candidates: not clear
-      found = c;
-    }
-  }
-  return found;
-}
-
 nlohmann::json placed_limits(const nlohmann::json& limits, const ChannelInfo& channel) {
   nlohmann::json out = nlohmann::json::array();
   if (!limits.is_object()) return out;
-  std::vector<std::string> undeclared;
-  for (const SignalInfo& s : channel.signals)
-    if (!s.declared) undeclared.push_back(s.name);
   for (const auto& [key, value] : limits.items()) {
     if (!value.is_number()) continue;
     const double v = value.get<double>();
@@ -72,8 +49,7 @@ nlohmann::json placed_limits(const nlohmann::json& limits, const ChannelInfo& ch
       placed = true;
     }
     if (placed) continue;
-    const std::string by_name = limit_signal(key, undeclared);  // transitional: a device on the legacy table
-    entry(by_name.empty() ? nlohmann::json(nullptr) : nlohmann::json(by_name), by_name.empty() ? "" : "name");
+    entry(nullptr, "");
   }
   return out;
 }

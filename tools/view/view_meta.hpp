@@ -12,17 +12,9 @@
 
 namespace gyrostab::tools::view {
 
-// Transitional, for devices whose signal table declares no columns yet: the signal a limit bounds, by name, or
-// "" when none is clear. The limit's key less its "limit"/"stop"/"soft" words must be a column's name
-// ("precession_stop_rad" -> "precession_rad", "precession_torque_limit_Nm" -> "precession_torque_Nm"), else the
-// one column that starts with the key's first word and ends in the same unit ("motor_torque_limit_Nm" ->
-// "motor_torque_x_Nm" if it is the only one). A converted device's columns name their limits instead
-// (ColumnSpec::limits, SignalInfo::limits).
-std::string limit_signal(const std::string& key, const std::vector<std::string>& columns);
-
-// [{"key", "value", "channel", "signal" (or null), "label", "placed_by": "table" | "name"}] for the limits that
-// are finite positive numbers: on every signal of `channel` whose table declares the key; else, among the
-// signals no table describes, by name (limit_signal); else unplaced (signal null).
+// [{"key", "value", "channel", "signal" (or null), "label", "placed_by": "table" | ""}] for the limits that are
+// finite positive numbers: on every signal of `channel` whose table declares the key; else unplaced (signal
+// null).
 nlohmann::json placed_limits(const nlohmann::json& limits, const ChannelInfo& channel);
 
 // [{"bit", "mask", "name", "kind": "cause" | "state"}] of msg::FaultBit (the actuator frame's status word).

@@ -39,7 +39,6 @@ extern const DeviceDescriptor kBauersfeldCompass{
         "`latitude_deg`, `status_bits`.",
     .read = read_bauersfeld_compass,
     .doc = bauersfeld_compass_doc,
-    .can_nodes = can::kAllNodes,
 };
 
 }  // namespace gyrostab::tools

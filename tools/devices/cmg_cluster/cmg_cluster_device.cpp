@@ -50,7 +50,6 @@ extern const DeviceDescriptor kCmgCluster{
         "`max_gimbal_rate_rad_s`, `settle_band_deg`, `near_singular_measure`.",
     .read = read_cmg_cluster,
     .doc = cmg_cluster_doc,
-    .can_nodes = can::kNodeImu | can::kNodeCluster,  // star tracker and gyro package; the CMG electronics
 };
 
 }  // namespace gyrostab::tools

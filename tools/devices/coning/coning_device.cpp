@@ -50,7 +50,6 @@ extern const DeviceDescriptor kConing{
         "`drive_voltage_limit_V`.",
     .read = read_coning,
     .doc = coning_doc,
-    .can_nodes = can::kAllNodes,
 };
 
 }  // namespace gyrostab::tools

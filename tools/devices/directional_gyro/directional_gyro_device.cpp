@@ -46,7 +46,6 @@ extern const DeviceDescriptor kDirectionalGyro{
         "`bank_rad`, `rotor_azimuth_rad`, `M1_Nm`, `M2_Nm`, `status_bits`.",
     .read = read_directional_gyro,
     .doc = directional_gyro_doc,
-    .can_nodes = can::kAllNodes,
 };
 
 }  // namespace gyrostab::tools

@@ -34,7 +34,6 @@ extern const DeviceDescriptor kFoucaultGyro{
         "torque on the frame about the free axis), `envelope_rad` (|x0| e^(−σt)), `status_bits`.",
     .read = read_foucault_gyro,
     .doc = foucault_gyro_doc,
-    .can_nodes = can::kAllNodes,
 };
 
 }  // namespace gyrostab::tools

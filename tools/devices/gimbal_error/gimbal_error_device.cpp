@@ -34,7 +34,6 @@ extern const DeviceDescriptor kGimbalError{
         "`beta_rad`, `alpha_error_rad`, `beta_error_rad`, `yaw_rad`, `pitch_rad`, `roll_rad`, `status_bits`.",
     .read = read_gimbal_error,
     .doc = gimbal_error_doc,
-    .can_nodes = can::kAllNodes,
 };
 
 }  // namespace gyrostab::tools

@@ -50,7 +50,6 @@ extern const DeviceDescriptor kGyroPendulum{
         "orbital speed and the pivot's declination.",
     .read = read_gyro_pendulum,
     .doc = gyro_pendulum_doc,
-    .can_nodes = can::kNodeDrive1 | can::kNodeDrive2,
 };
 
 }  // namespace gyrostab::tools

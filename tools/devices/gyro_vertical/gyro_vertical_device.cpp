@@ -45,7 +45,6 @@ extern const DeviceDescriptor kGyroVertical{
         "`M2_Nm`, `turn_rate_rad_s`, `turn_indicator_rad_s`, `status_bits`.",
     .read = read_gyro_vertical,
     .doc = gyro_vertical_doc,
-    .can_nodes = can::kAllNodes,
 };
 
 }  // namespace gyrostab::tools

@@ -40,7 +40,6 @@ extern const DeviceDescriptor kGyrocompass{
         "`M1_Nm`, `M2_Nm`, `latitude_deg`, `heading_deg`, `swing_rad`, `status_bits`.",
     .read = read_gyrocompass,
     .doc = gyrocompass_doc,
-    .can_nodes = can::kNodeImu | can::kNodeDrive1 | can::kNodeDrive2,
 };
 
 }  // namespace gyrostab::tools

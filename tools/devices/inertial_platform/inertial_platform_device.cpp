@@ -43,7 +43,6 @@ extern const DeviceDescriptor kInertialPlatform{
         "`torquer1_Nm`, `torquer2_Nm`, `gyro1_rad`, `velocity_error1_m_s`, `status_bits`.",
     .read = read_inertial_platform,
     .doc = inertial_platform_doc,
-    .can_nodes = can::kAllNodes,
 };
 
 }  // namespace gyrostab::tools

@@ -36,7 +36,6 @@ extern const DeviceDescriptor kMonorail{
         "`\"limits\"`: `motor_torque_limit_Nm`, `tilt_overturned_rad` (π/2: the car lies on the ground).",
     .read = read_monorail,
     .doc = monorail_doc,
-    .can_nodes = can::kNodeImu | can::kNodeDrive2,  // car tilt sensor; gyro case axis (2)
 };
 
 }  // namespace gyrostab::tools

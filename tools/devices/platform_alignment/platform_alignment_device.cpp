@@ -46,7 +46,6 @@ extern const DeviceDescriptor kPlatformAlignment{
         "`status_bits`.",
     .read = read_platform_alignment,
     .doc = platform_alignment_doc,
-    .can_nodes = can::kAllNodes,
 };
 
 }  // namespace gyrostab::tools

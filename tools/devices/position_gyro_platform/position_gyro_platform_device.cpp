@@ -33,7 +33,6 @@ extern const DeviceDescriptor kPositionGyroPlatform{
         "`disturbance_Nm`, `base_rad`, `status_bits`.",
     .read = read_position_gyro_platform,
     .doc = position_gyro_platform_doc,
-    .can_nodes = can::kNodeImu | can::kNodeDrive1 | can::kNodeDrive2,
 };
 
 }  // namespace gyrostab::tools

@@ -110,7 +110,6 @@ extern const DeviceDescriptor kPowerStabilizer{
         "`within_bound`. docs/extreme.md has the stiff and extreme cases.",
     .read = read_power_stabilizer,
     .doc = power_stabilizer_doc,
-    .can_nodes = can::kNodeDrive1 | can::kNodeDrive2,
     .accuracy = power_stabilizer_accuracy,
 };
 

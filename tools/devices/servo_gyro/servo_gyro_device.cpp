@@ -34,7 +34,6 @@ extern const DeviceDescriptor kServoGyro{
         "`status_bits`. report.json `\"limits\"`: `motor_torque_limit_Nm`.",
     .read = read_servo_gyro,
     .doc = servo_gyro_doc,
-    .can_nodes = can::kNodeDrive1 | can::kNodeDrive2,
 };
 
 }  // namespace gyrostab::tools

@@ -39,7 +39,6 @@ extern const DeviceDescriptor kShipRollDamper{
         "hold (docs/models/gimbal-gyro.md).",
     .read = read_ship_roll_damper,
     .doc = ship_roll_damper_doc,
-    .can_nodes = can::kNodeImu | can::kNodeDrive2,  // roll sensor; one precession axis (2)
     .accuracy = ship_roll_damper_accuracy,
 };
 

@@ -34,7 +34,6 @@ class RecordingShip {
     out_.states.push_back(plant_.state());
   }
   bool finite() const { return plant_.finite(); }
-  void record(double*) const {}
   nlohmann::json figures() const { return nlohmann::json::object(); }
 
  private:

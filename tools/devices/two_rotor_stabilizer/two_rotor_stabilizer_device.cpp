@@ -26,7 +26,6 @@ extern const DeviceDescriptor kTwoRotorStabilizer{
         "`link_torque_Nm`, `status_bits`.",
     .read = read_two_rotor_stabilizer,
     .doc = two_rotor_stabilizer_doc,
-    .can_nodes = can::kNodeDrive1 | can::kNodeDrive2,
 };
 
 }  // namespace gyrostab::tools

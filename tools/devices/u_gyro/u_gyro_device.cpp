@@ -32,7 +32,6 @@ extern const DeviceDescriptor kUGyro{
         "`book_torque_Nm` ((15.29) at the same γ), `status_bits`.",
     .read = read_u_gyro,
     .doc = u_gyro_doc,
-    .can_nodes = can::kAllNodes,
 };
 
 }  // namespace gyrostab::tools

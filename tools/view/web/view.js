@@ -368,11 +368,9 @@ function onMeta(msg) {
   const unplaced = msg.limits.filter((l) => l.signal === null);
   $("limits-note").textContent = unplaced.length
     ? "Scene limits on no charted signal: " + unplaced.map((l) => `${l.key} ${fmt(l.value)}`).join(", ") : "";
-  const guessed = msg.limits.filter((l) => l.placed_by === "name").length;
-  const undeclared = msg.channels.some((ch) => ch.signals.some((s) => !s.declared));
-  $("table-note").textContent = undeclared
-    ? "Units and limits of this device's columns are read from their names: its signal table declares no " +
-      "columns yet (transitional)." + (guessed ? ` ${guessed} limit(s) placed by name.` : "") : "";
+  const undeclared = msg.channels.flatMap((ch) => ch.signals.filter((s) => !s.declared).map((s) => s.name));
+  $("table-note").textContent = undeclared.length
+    ? "Signals no signal table declares (no unit, no limits): " + undeclared.join(", ") : "";
 }
 
 function connect() {

@@ -1,12 +1,8 @@
-// The shared SensorFrame of the devices that have no signal table of their own yet: generated from
-// firmware/msg/legacy_signals.toml (gyrostab_signals/legacy_frames.hpp), with the axis indices of its arrays.
-// A device with a table uses its own typed frames instead (gyrostab_signals/<device>_frames.hpp,
-// docs/signals.md).
+// The axis indices of the signal tables' arrays (a signal with count = 3 or 2 or 4 in
+// tools/devices/<device>/<device>_signals.toml), for code that indexes a typed frame's array by its axis.
 #pragma once
 
 #include <cstddef>
-
-#include "gyrostab_signals/legacy_frames.hpp"
 
 namespace gyrostab::msg {
 
