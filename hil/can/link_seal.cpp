@@ -27,12 +27,11 @@ std::uint64_t unkeyed_mac(std::span<const std::uint8_t> payload) {
 
 hil::GuardConfig can_guard_config(hil::GuardConfig c) {
   c.profile.freshness_bytes = static_cast<std::uint8_t>(kLinkFreshnessBytes);
-  // The header frames have no room for the scene hash yet: over CAN the scene is not checked.
-  c.scene = 0;
   return c;
 }
 
-std::size_t set_mac_payload(std::span<const CanFrame> set, std::span<std::uint8_t, kMaxMacPayload> out) {
+std::size_t set_mac_payload(std::span<const CanFrame> set, std::uint64_t scene,
+                            std::span<std::uint8_t, kMaxMacPayload> out) {
   std::size_t n = 0;
   for (std::size_t i = 0; i < set.size(); ++i) {
     const CanFrame& f = set[i];
@@ -42,7 +41,8 @@ std::size_t set_mac_payload(std::span<const CanFrame> set, std::span<std::uint8_
     out[n++] = static_cast<std::uint8_t>((f.id >> 8) & 0xFFu);
     for (std::size_t b = kTickTagByte; b < end && b < kFdMaxData; ++b) out[n++] = f.data[b];
   }
-  return n;
+  store_le(out.data() + n, scene, 8);
+  return n + 8;
 }
 
 hil::LinkEnvelope read_link_envelope(const CanFrame& h) {
@@ -63,7 +63,7 @@ void seal(std::span<CanFrame> set, hil::LinkGuard& guard) {
   CanFrame& header = set.back();
   write_link_envelope(header, guard.header());  // the MAC covers sender and session
   std::array<std::uint8_t, kMaxMacPayload> payload{};
-  const std::size_t n = set_mac_payload(set, payload);
+  const std::size_t n = set_mac_payload(set, guard.scene(), payload);
   hil::LinkEnvelope e = guard.protect(std::span<const std::uint8_t>(payload.data(), n));
   if (!guard.authenticated()) e.mac = unkeyed_mac(std::span<const std::uint8_t>(payload.data(), n));
   write_link_envelope(header, e);
@@ -72,8 +72,10 @@ void seal(std::span<CanFrame> set, hil::LinkGuard& guard) {
 hil::GuardVerdict open(std::span<const CanFrame> set, hil::LinkGuard& guard, hil::LinkEnvelope& env) {
   if (set.empty()) return guard.count(hil::GuardVerdict::kForeign);
   env = read_link_envelope(set.back());
+  // The set does not carry the sender's scene hash; its MAC covers it: a set of another scene fails the MAC.
+  env.scene = guard.scene();
   std::array<std::uint8_t, kMaxMacPayload> payload{};
-  const std::size_t n = set_mac_payload(set, payload);
+  const std::size_t n = set_mac_payload(set, guard.scene(), payload);
   const std::span<const std::uint8_t> covered(payload.data(), n);
   const hil::GuardVerdict v = guard.check(env, covered);
   if (v != hil::GuardVerdict::kOk || guard.authenticated()) return v;

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <optional>
 
 #include "firmware/msg/fault_bits.hpp"
@@ -27,6 +28,7 @@
 #include "tests/hil/hil_test_support.hpp"
 #include "gyrostab_signals/ship_roll_damper_frames.hpp"
 #include "tools/run/can_link_setup.hpp"
+#include "tools/scene/scene_hash.hpp"
 
 namespace gyrostab::testing {
 namespace {
@@ -65,12 +67,19 @@ std::uint32_t damper_id(std::string_view name) {
   return 0;
 }
 
+// The scene hash the controller under test runs with: a CAN set's MAC covers it (hil/can/link_seal.hpp).
+std::uint64_t ship_scene_hash() {
+  std::ifstream f(scene("ship-roll-damper-active.toml"), std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  return tools::scene_hash(text);
+}
+
 // The test's plant: synthetic sensor sets of a ship roll damper (its bus: imu + drive2) over SocketCAN.
 class FakePlant {
  public:
   static constexpr std::uint64_t kSession = 0x5e551011;
   explicit FakePlant(std::optional<firmware::link::Key128> key = std::nullopt)
-      : guard_(can::can_guard_config(hil::plant_guard(kSession, key))) {
+      : guard_(can::can_guard_config(hil::plant_guard(kSession, key, ship_scene_hash()))) {
     can::SocketCanConfig c;
     c.ifname = can_if();
     for (std::size_t i = 0; i < bus_.messages().size(); ++i)
@@ -278,7 +287,8 @@ void run_session_case(bool keyed) {
   firmware::link::Key128 wrong = key;
   wrong.bytes[0] ^= 1;
   hil::LinkGuard other(can::can_guard_config(
-      hil::plant_guard(keyed ? FakePlant::kSession : FakePlant::kSession + 1, keyed ? std::optional(wrong) : std::nullopt)));
+      hil::plant_guard(keyed ? FakePlant::kSession : FakePlant::kSession + 1, keyed ? std::optional(wrong) : std::nullopt,
+                       ship_scene_hash())));
   // A forger's freshness runs ahead of the plant's (which resends tick 0 until the controller is up), else its
   // set is refused as a replay before its MAC is looked at.
   for (int i = 0; i < 5000; ++i) other.protect({});

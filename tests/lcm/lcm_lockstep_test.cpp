@@ -33,6 +33,10 @@ TEST(LcmLockstep, EveryShippedSceneIsBitIdenticalToInProcess) {
     EXPECT_EQ(r["processes"]["what_happened"], "completed") << path;
     EXPECT_EQ(r["link"]["counters"]["accepted"], std::stoi(kTicks)) << path;
     EXPECT_EQ(r["controller_process"]["link"]["counters"]["accepted"], std::stoi(kTicks)) << path;
+    // The controller is not told the tick count: it stops on the plant's end-of-run frame, which it acknowledges.
+    EXPECT_EQ(r["link"]["end_of_run"]["tick"], std::stoi(kTicks)) << path;
+    EXPECT_EQ(r["link"]["end_of_run"]["acknowledged"], true) << path;
+    EXPECT_EQ(r["controller_process"]["link"]["end_of_run"]["tick"], std::stoi(kTicks)) << path;
     // The firmware counters travel back into timing.controller, as in process.
     EXPECT_EQ(r["timing"]["controller"]["fault_monitor"]["good_frames"], std::stoi(kTicks)) << path;
   }

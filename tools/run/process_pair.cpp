@@ -42,7 +42,8 @@ std::vector<std::string> child_args(const RunRequest& req, const std::string& ro
   // second source speaking as it is caught as a hijack, hil/link/source_watch.hpp).
   a.insert(a.end(), {"--controller-id", format_link_id(controller_id)});
   if (!t.key_file.empty()) a.insert(a.end(), {"--key-file", t.key_file});
-  if (req.ticks >= 0) a.insert(a.end(), {"--ticks", std::to_string(req.ticks)});
+  // The plant decides how long the run is; the controller stops on its end-of-run frame (docs/protocol.md).
+  if (req.ticks >= 0 && role == "plant") a.insert(a.end(), {"--ticks", std::to_string(req.ticks)});
   if (!t.lcm_actuator_url.empty()) a.insert(a.end(), {"--lcm-actuator-url", t.lcm_actuator_url});
   a.insert(a.end(), {"--lcm-url", t.lcm_url, "--channel-suffix", suffix, "--timeout-ms",
                      std::to_string(t.timeout_ms), "--start-timeout-ms", std::to_string(t.start_timeout_ms)});
