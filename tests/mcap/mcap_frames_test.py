@@ -17,7 +17,8 @@
 4. `gyrostab export` of a candump log of the same run (made from the bus log with the project's CAN codec by
    candump_from_buslog): every frame equals the bus log's, every tick and every 7th; a log cut inside a line, a
    malformed line and a damaged frame: exit 5, the whole ticks before (or around) it in the file, incomplete; a
-   log of another CAN map: exit 5, nothing written; candump's own log without gyrostab's header: exit 2.
+   log of another CAN map: exit 5, nothing written; candump's own log without gyrostab's header: exit 2. And a
+   committed candump log of a real 100-tick CAN run (recorded in the VM) against the in-process run's bus log.
 Exit 77 (skip) without node or @mcap/core (tools/setup installs both). About 3 s."""
 import os
 import shutil
@@ -217,6 +218,21 @@ def main():
     r = run("export", other, "--mcap", os.path.join(work, "othermap.mcap"))
     check(r.returncode == 5 and "CAN map" in r.stderr and not os.path.exists(os.path.join(work, "othermap.mcap")),
           f"a log of another CAN map: exit 5, nothing written ({r.returncode}: {r.stderr.strip()[:200]})")
+    # A real CAN run's log (committed: tests/mcap/fixtures/ship-roll-damper-active-100.candump, recorded by
+    #   hil/vcan-run -- gyrostab run sim/scenes/ship-roll-damper-active.toml --ticks 100 --transport can
+    #                   --can-if vcan0 --can-log FILE
+    # in the project's VM): its export equals the in-process run's bus log of the same ticks, bit for bit. A
+    # change of the device's signal table changes its CAN map: then the export refuses the fixture (exit 5,
+    # "recorded with the CAN map") and it is recorded again with that command.
+    fixture = os.path.join(src, "tests/mcap/fixtures/ship-roll-damper-active-100.candump")
+    flog = os.path.join(work, "run100.lcmlog")
+    r = run("run", scene, "--no-progress", "--ticks", "100", "--out", os.path.join(work, "out100"), "--log", flog)
+    fmcap = os.path.join(work, "real-can.mcap")
+    r2 = run("export", fixture, "--mcap", fmcap)
+    check(r.returncode == 0 and r2.returncode == 0,
+          f"a real CAN run's candump log exports, exit 0 ({r.returncode}, {r2.returncode}: {r2.stderr.strip()[:240]})")
+    check(r2.returncode == 0 and read(fmcap, "--export", scene, "--frames-every", "1", "--bus-log", flog),
+          "a real CAN run's frames (lockstep over vcan in the VM) equal the in-process run's bus log, bit for bit")
     # candump's own log (no gyrostab header): refused, nothing written.
     plain = os.path.join(work, "bus.candump")
     with open(plain, "w") as f:

@@ -221,9 +221,10 @@ int export_candump_log(const ExportRequest& req) {
               std::to_string(first_missing) + "): frames rejected by the decoder: " + rejected.dump();
     problem_offset = missing_offset;
   }
-  if (problem.empty() && !(ended && acknowledged)) {
-    problem = ended ? "the log ends before the controller's answer to the plant's end-of-run set"
-                    : "the log ends without the plant's end-of-run set (cut, or the run was stopped)";
+  // The plant's own log may end before the controller's answer reached it (the plant stops listening when its
+  // resends of the end frame time out): the end frame alone marks a whole run; the answer is reported.
+  if (problem.empty() && !ended) {
+    problem = "the log ends without the plant's end-of-run set (cut, or the run was stopped)";
     problem_offset = dump.bytes;
   }
   const bool complete = problem.empty();

@@ -4,7 +4,8 @@
 // tick and carry the scene text; the frames are assembled into sensor and command sets with can::SetAssembler
 // on the device's map (hil/can/frame_codec.hpp, the live link's decoder), and every tick with both sets becomes
 // one /gyrostab/sensor and one /gyrostab/actuator message at simulated time tick x tick_ns.
-// A log is complete when it holds the plant's end-of-run set (docs/protocol.md) and the controller's answer.
+// A log is complete when it holds the plant's end-of-run set (docs/protocol.md); the controller's answer to it,
+// when the log holds one, is reported.
 // A log cut in a line, a line that is not a candump frame, or a log without the end of the run: every whole
 // tick before it is written and /gyrostab/log says incomplete and why (exit 5). A log without a gyrostab header
 // (no `# device` line: candump's own) is refused (exit 2); one recorded with another map or log version, or
