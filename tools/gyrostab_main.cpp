@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
   CLI::App* replay_cmd = app.add_subcommand(
       "replay", "replay a bus log into the controller alone and check every actuator frame bit for bit "
                 "(exit 0 identical, 4 mismatch, 5 truncated/corrupt log, 2 nothing replayed)");
-  replay_cmd->add_option("log", replay.transport.replay_log, "bus log (gyrostab run --log)")->required();
+  replay_cmd->add_option("log", replay.transport.replay_log, "bus log (gyrostab run --log) or candump log (--can-log)")->required();
   replay_cmd->add_option("--scene", replay.scene_path, "use this scene instead of the one recorded in the log");
   replay_cmd->add_flag("--real-time", replay.transport.replay_real_time, "feed frames at the scene's tick rate");
   bool replay_target = false;
@@ -247,9 +247,9 @@ int main(int argc, char** argv) {
   // MCAP from a bus log (docs/mcap.md).
   gyrostab::tools::ExportRequest export_req;
   CLI::App* export_cmd = app.add_subcommand(
-      "export", "write a bus log (gyrostab run --log) as an MCAP file for Foxglove, Lichtblick, PlotJuggler "
+      "export", "write a bus log (gyrostab run --log) or a candump log (--can-log) as an MCAP file for Foxglove, Lichtblick, PlotJuggler "
                 "(exit 0 complete, 5 the log is cut or damaged: what it held before is written; docs/mcap.md)");
-  export_cmd->add_option("log", export_req.log_path, "bus log (gyrostab run --log)")->required()->check(CLI::ExistingFile);
+  export_cmd->add_option("log", export_req.log_path, "bus log (gyrostab run --log) or candump log (--can-log)")->required()->check(CLI::ExistingFile);
   export_cmd->add_option("--mcap", export_req.mcap_path, "the MCAP file to write")->required();
   export_cmd->add_option("--every", export_req.every, "the frames of every N-th tick (default 1: every tick)")
       ->check(CLI::PositiveNumber);

@@ -6,6 +6,7 @@
 
 #include "hil/can/candump_log.hpp"
 #include "tools/log/bus_log_reader.hpp"
+#include "tools/log/candump_export.hpp"
 #include "tools/log/frame_channel.hpp"
 #include "tools/run/run_mcap.hpp"
 
@@ -34,12 +35,7 @@ int export_log(const ExportRequest& req) {
     std::fprintf(stderr, "gyrostab export: %s\n", why.c_str());
     return 2;
   }
-  if (can::looks_like_candump_log(req.log_path)) {
-    std::fprintf(stderr, "gyrostab export: %s is a candump log; its export is not written yet (the CAN frame map is "
-                         "being regenerated per device): export the run's LCM bus log (run --log) instead\n",
-                 req.log_path.c_str());
-    return 2;
-  }
+  if (can::looks_like_candump_log(req.log_path)) return export_candump_log(req);
   buslog::BusLogReader reader;
   const buslog::ReadStatus opened = reader.open(req.log_path);
   if (opened != buslog::ReadStatus::kOk) {
