@@ -75,16 +75,18 @@ TEST(CanClosedLoop, EveryShippedSceneIsBitIdenticalToInProcessOrRefusedForBusLoa
     EXPECT_EQ(r["link"]["counters"]["accepted"], kTicks);
     const nlohmann::json& pc = r["link"]["can"];
     const nlohmann::json& cc = r["controller_process"]["link"]["can"];
-    // One set per tick, plus at most one per lockstep resend of the other side (a start-up resend before the
+    // One set per tick and one for the end of the run (the plant's end-of-run set, the controller's
+    // acknowledgement), plus at most one per lockstep resend of the other side (a start-up resend before the
     // controller listened, or an answer slower than the CAN link's 250 ms resend interval on a very loaded
-    // VM): resends carry new alive counters and are never rejected.
+    // VM): resends carry new alive counters and are never rejected. The end of the run is acknowledged.
     const int plant_resent = r["link"]["counters"]["resent"].get<int>();
     const int controller_resent = r["controller_process"]["link"]["counters"]["resent"].get<int>();
     EXPECT_GE(pc["actuator_rx"]["sets_completed"].get<int>(), kTicks);
-    EXPECT_LE(pc["actuator_rx"]["sets_completed"].get<int>(), kTicks + controller_resent);
+    EXPECT_LE(pc["actuator_rx"]["sets_completed"].get<int>(), kTicks + 1 + controller_resent);
+    EXPECT_EQ(r["link"]["end_of_run"]["acknowledged"], true) << r["link"].dump();
     EXPECT_TRUE(pc["actuator_rx"]["rejected"].empty()) << pc["actuator_rx"].dump();
     EXPECT_GE(cc["sensor_rx"]["sets_completed"].get<int>(), kTicks);
-    EXPECT_LE(cc["sensor_rx"]["sets_completed"].get<int>(), kTicks + plant_resent);
+    EXPECT_LE(cc["sensor_rx"]["sets_completed"].get<int>(), kTicks + 1 + plant_resent);
     EXPECT_TRUE(cc["sensor_rx"]["rejected"].empty()) << cc["sensor_rx"].dump();
     EXPECT_EQ(pc["socket"]["kernel_drops"], 0);
     EXPECT_DOUBLE_EQ(pc["bus_load"]["load"].get<double>(), load.load);

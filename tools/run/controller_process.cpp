@@ -388,13 +388,8 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
         ? "hijacked: the plant saw a second source send as this controller and ended the run at tick " +
               std::to_string(link.hijack_tick) +
               " (without a link key anyone who reads the bus can copy the ids: use --key-file)"
-        : "hijacked: a second source sends as plant " + format_link_id(ep.guard().peer()) +
-               (link.hijack_by_stale_run
-                    ? " (its frames were refused as stale on " + std::to_string(hil::SourceWatch::kStaleTicks) +
-                          " ticks in a row up to tick " + std::to_string(link.hijack_tick) + ")"
-                    : " (two different sensor frames for tick " + std::to_string(link.hijack_tick) + ")") +
-               "; the controller stopped there (without a link key anyone who reads the bus can copy the ids: "
-               "use --key-file)";
+        : hijack_message("plant", ep.guard().peer(), link.hijack_by_stale_run, link.hijack_tick, "sensor frames",
+                         "the controller stopped there");
     l["hijacked"] = {{"tick", link.hijack_tick},
                      {"evidence", link.hijack_seen_by_plant ? "the plant's end-of-run frame"
                                   : link.hijack_by_stale_run ? "stale frames every tick"

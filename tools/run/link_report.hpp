@@ -10,6 +10,7 @@
 #include "hil/link/link_counters.hpp"
 #include "hil/rt/latency_histogram.hpp"
 #include "hil/link/link_guard.hpp"
+#include "hil/link/source_watch.hpp"
 #include "tools/run/link_identity.hpp"
 #include "tools/scene/scene_hash.hpp"
 #include "tools/run/link_settings.hpp"
@@ -46,6 +47,17 @@ inline nlohmann::json counters_json(const hil::LinkCounters& c) {
           {"missed_frames", c.missed_frames},
           {"timeouts", c.timeouts},
           {"resynced", c.resynced}};
+}
+
+// What a run found hijacked says (both ends, docs/protocol.md "A second source on the bus"): whom the second
+// source speaks as, its evidence — `frames` named as "sensor frames" or "commands" — and what this end did.
+inline std::string hijack_message(const char* as_whom, std::uint64_t peer, bool by_stale_run, std::int64_t tick,
+                                  const char* frames, const char* what_was_done) {
+  return std::string("hijacked: a second source sends as ") + as_whom + " " + format_link_id(peer) +
+         (by_stale_run ? " (its frames were refused as stale on " + std::to_string(hil::SourceWatch::kStaleTicks) +
+                             " ticks in a row up to tick " + std::to_string(tick) + ")"
+                       : std::string(" (two different ") + frames + " for tick " + std::to_string(tick) + ")") +
+         "; " + what_was_done + " (without a link key anyone who reads the bus can copy the ids: use --key-file)";
 }
 
 // report.json link.session of a guard: who this end was, whom it bound to, and what the guard refused.

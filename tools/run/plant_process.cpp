@@ -358,13 +358,8 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
   }
   std::string happened = "completed";
   if (link.hijack_tick >= 0) {
-    happened = "hijacked: a second source sends as controller " + format_link_id(ep.guard().peer()) +
-               (link.hijack_by_stale_run
-                    ? " (its frames were refused as stale on " + std::to_string(hil::SourceWatch::kStaleTicks) +
-                          " ticks in a row up to tick " + std::to_string(link.hijack_tick) + ")"
-                    : " (two different commands for tick " + std::to_string(link.hijack_tick) + ")") +
-               "; the run was stopped there: its results are not the loop's (without a link key anyone who "
-               "reads the bus can copy the ids: use --key-file)";
+    happened = hijack_message("controller", ep.guard().peer(), link.hijack_by_stale_run, link.hijack_tick,
+                              "commands", "the run was stopped there: its results are not the loop's");
     l["hijacked"] = {{"tick", link.hijack_tick},
                      {"evidence", link.hijack_by_stale_run ? "stale frames every tick" : "two commands for one tick"}};
   } else if (link.peer_lost) {
