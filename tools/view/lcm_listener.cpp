@@ -310,6 +310,12 @@ void LcmListener::take(const std::uint8_t* data, std::size_t size) {
     freshness_[d] = e.freshness;
   }
   last_heard_ns_ = now;
+  const bool end = d == 0 ? (s.status & msg::bit(msg::SensorStatusBit::kEndOfRun)) != 0u
+                          : (a.status & msg::bit(msg::FaultBit::kEndOfRun)) != 0u;
+  if (end) {
+    ++counts.end_of_run;
+    return;
+  }
   RowHeader h;
   h.flags = (o_.key ? kAuthenticated : 0u) | (new_run_[d] ? kNewRun : 0u);
   if (d == 0) {
@@ -346,7 +352,7 @@ nlohmann::json direction_json(const DirectionCounts& c) {
   add(c.other_session, "other session or sender");
   add(c.undecodable, "not this device's type");
   return {{"received", c.received.load()}, {"shown", c.shown.load()}, {"refused", refused}, {"why", why},
-          {"ring_full", c.ring_full.load()}};
+          {"ring_full", c.ring_full.load()}, {"end_of_run", c.end_of_run.load()}};
 }
 
 }  // namespace
@@ -384,7 +390,8 @@ nlohmann::json LcmListener::summary_json() const {
   for (const auto& [k, c] : {std::pair<const char*, const DirectionCounts*>{"sensor", &sensor_}, {"actuator", &actuator_}}) {
     j[k] = {{"received", c->received.load()}, {"shown", c->shown.load()}, {"bad_mac", c->bad_mac.load()},
             {"replayed", c->replayed.load()}, {"other_session", c->other_session.load()},
-            {"undecodable", c->undecodable.load()}, {"ring_full", c->ring_full.load()}};
+            {"undecodable", c->undecodable.load()}, {"ring_full", c->ring_full.load()},
+            {"end_of_run", c->end_of_run.load()}};
   }
   return j;
 }

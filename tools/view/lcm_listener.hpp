@@ -60,6 +60,9 @@ struct DirectionCounts {
   std::atomic<std::uint64_t> other_session{0};   // another session, or another sender in this one
   std::atomic<std::uint64_t> undecodable{0};     // wrong size or type fingerprint (another device or version)
   std::atomic<std::uint64_t> ring_full{0};       // shown frames the view's ring had no room for
+  std::atomic<std::uint64_t> end_of_run{0};      // the run's end-of-run frame and its answer (and their copies):
+                                                 // verified like the others, not charted (their values are not
+                                                 // the loop's: docs/protocol.md)
 };
 
 class LcmListener {
