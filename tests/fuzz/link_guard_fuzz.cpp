@@ -68,12 +68,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   hil::MemoryTransport plant_side{bus->to_controller, bus->to_plant};
   hil::MemoryTransport controller_side{bus->to_plant, bus->to_controller};
-  hil::FrameEndpoint<hil::MemoryTransport> plant(plant_side, hil::plant_guard(kSession, key));
-  hil::FrameEndpoint<hil::MemoryTransport> controller(controller_side,
-                                                      hil::controller_guard(kControllerId, 0, key));
+  hil::FrameEndpoint<hil::MemoryTransport> plant(plant_side, hil::plant_guard(kSession, key),
+                                                 msg::monorail::kSignals);
+  hil::FrameEndpoint<hil::MemoryTransport> controller(controller_side, hil::controller_guard(kControllerId, 0, key),
+                                                      msg::monorail::kSignals);
   bool plant_bound = false, controller_bound = false;
   // Datagrams: a length byte (its low bit picks the direction, the rest n gives the length 2n + 2, 2 to 256),
-  // then that many bytes; the frame sizes 152 and 256 are n = 75 and n = 127.
+  // then that many bytes; the monorail's frames, 128 and 104 bytes, are n = 63 and n = 51.
   std::size_t i = 1;
   while (i < size) {
     const int len = 2 * (data[i] >> 1) + 2;

@@ -21,8 +21,11 @@ using gyrostab::firmware::link::TargetFrameKind;
 using gyrostab::firmware::link::TargetFrameView;
 using gyrostab::firmware::link::TargetRxVerdict;
 
+// The frames of a device with 5 sensor values and 2 commands (the monorail's table).
+constexpr gyrostab::firmware::link::TargetFrameSizes kFrames = gyrostab::firmware::link::target_frame_sizes(5, 2);
+
 void run(const std::uint8_t* data, std::size_t size, bool from_host) {
-  TargetFrameDecoder dec(from_host);
+  TargetFrameDecoder dec(from_host, kFrames);
   std::uint32_t session = 0, sender = 0;
   if (size > 0 && (data[0] & 1u) != 0) {
     session = 9;
@@ -37,7 +40,7 @@ void run(const std::uint8_t* data, std::size_t size, bool from_host) {
     const TargetRxVerdict r = dec.judge(wire, v);
     if (dec.counters().accepted + dec.counters().refused() != before + 1) __builtin_trap();  // one cause each
     if (r != TargetRxVerdict::kOk) continue;
-    const long want = gyrostab::firmware::link::target_payload_bytes(v.kind);
+    const long want = gyrostab::firmware::link::target_payload_bytes(v.kind, kFrames);
     if (want >= 0 ? v.payload.size() != static_cast<std::size_t>(want)
                   : v.payload.size() > gyrostab::firmware::link::kMaxConfigBytes) {
       __builtin_trap();
@@ -50,7 +53,7 @@ void run(const std::uint8_t* data, std::size_t size, bool from_host) {
     std::memcpy(copy, v.payload.data(), n);
     TargetFrameEncoder enc(v.sender, v.session);
     const std::span<const std::uint8_t> again = enc.encode(v.kind, copy, n);
-    TargetFrameDecoder fresh(from_host);
+    TargetFrameDecoder fresh(from_host, kFrames);
     TargetFrameView w;
     if (again.empty() || fresh.judge(again.first(again.size() - 1), w) != TargetRxVerdict::kOk ||
         w.payload.size() != n || std::memcmp(w.payload.data(), copy, n) != 0) {

@@ -34,7 +34,10 @@ std::string limit_label(const std::string& key) {
 nlohmann::json placed_limits(const nlohmann::json& limits, const ChannelInfo& channel) {
   nlohmann::json out = nlohmann::json::array();
   if (!limits.is_object()) return out;
-  for (const auto& [key, value] : limits.items()) {
+  for (const auto& item : limits.items()) {
+    // Named copies, not structured bindings: a lambda below uses the key (clang does not capture bindings).
+    const std::string key = item.key();
+    const nlohmann::json& value = item.value();
     if (!value.is_number()) continue;
     const double v = value.get<double>();
     if (!std::isfinite(v) || v <= 0) continue;
