@@ -140,16 +140,16 @@ TEST(ViewStore, GrowingKeepsEveryBucketExactly) {
   const std::int64_t n = 12'345;
   int grew = 0;
   for (std::int64_t k = 0; k <= n; ++k) {
-    const double row[3] = {0.001 * double(k), std::sin(0.01 * double(k)), double((k * 7919) % 101)};
-    grew += grown.add({k, 0, 0}, row) ? 1 : 0;
+    const double values[3] = {0.001 * double(k), std::sin(0.01 * double(k)), double((k * 7919) % 101)};
+    grew += grown.add({k, 0, 0}, values) ? 1 : 0;
   }
   EXPECT_EQ(grew, 3);  // 1999 -> 3999 -> 7999 -> 15999
   EXPECT_EQ(grown.span_ticks(), 15'999);
   tools::view::ViewStore direct(15'999, 1, 3);
   ASSERT_EQ(direct.buckets(), grown.buckets());
   for (std::int64_t k = 0; k <= n; ++k) {
-    const double row[3] = {0.001 * double(k), std::sin(0.01 * double(k)), double((k * 7919) % 101)};
-    direct.add({k, 0, 0}, row);
+    const double values[3] = {0.001 * double(k), std::sin(0.01 * double(k)), double((k * 7919) % 101)};
+    direct.add({k, 0, 0}, values);
   }
   EXPECT_EQ(grown.buckets_json(0), direct.buckets_json(0));
   grown.clear();
