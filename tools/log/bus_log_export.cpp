@@ -94,16 +94,14 @@ int export_log(const ExportRequest& req) {
     log["problem"] = std::string(buslog::describe(s)) + ": " + reader.problem();
     log["problem_offset"] = reader.problem_offset();
   }
-  const std::uint16_t log_ch = f.add_json("/gyrostab/log", "gyrostab.log",
-                                          "the bus log exported: complete or not, its end event, or where it broke");
-  ok = ok && f.json(log_ch, last_tick < 0 ? 0 : last_tick, log);
   if (!ok) {
     std::fprintf(stderr, "gyrostab export: cannot write %s: a write failed\n", req.mcap_path.c_str());
     return 3;
   }
-  if (!f.commit(error)) {
-    std::fprintf(stderr, "gyrostab export: %s\n", error.c_str());
-    return 3;
+  if (const int rc = finish_export(f, req, log, last_tick,
+                                   "the bus log exported: complete or not, its end event, or where it broke");
+      rc != 0) {
+    return rc;
   }
   std::printf("%s: wrote %s: %lld ticks of %s's frames (%s)\n", req.log_path.c_str(), req.mcap_path.c_str(),
               static_cast<long long>(written), scene.device.c_str(), complete ? "the log is complete" : "INCOMPLETE");
@@ -113,6 +111,21 @@ int export_log(const ExportRequest& req) {
                  req.log_path.c_str(), buslog::describe(s), reader.problem().c_str(),
                  static_cast<long long>(reader.ticks_read()), req.mcap_path.c_str());
     return kExportExitIncomplete;
+  }
+  return 0;
+}
+
+int finish_export(RunMcapFile& f, const ExportRequest& req, const nlohmann::json& log, std::int64_t last_tick,
+                  const char* what) {
+  const std::uint16_t log_ch = f.add_json("/gyrostab/log", "gyrostab.log", what);
+  if (!f.json(log_ch, last_tick < 0 ? 0 : last_tick, log)) {
+    std::fprintf(stderr, "gyrostab export: cannot write %s: a write failed\n", req.mcap_path.c_str());
+    return 3;
+  }
+  std::string error;
+  if (!f.commit(error)) {
+    std::fprintf(stderr, "gyrostab export: %s\n", error.c_str());
+    return 3;
   }
   return 0;
 }

@@ -12,6 +12,8 @@
 // be read writes nothing (exit 5; 2 if the file cannot be opened). Docs: docs/mcap.md.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <string>
 
@@ -28,5 +30,11 @@ inline constexpr int kExportExitIncomplete = 5;
 // Exit code: 0 complete, 2 bad options or unreadable file, 3 the MCAP file cannot be written, 5 the log is cut
 // or damaged (what it held before the damage is written).
 int export_log(const ExportRequest& req);
+
+class RunMcapFile;
+// The end every export shares: the /gyrostab/log channel (`what` describes it) with `log`, then the file
+// committed. 0, or 3 with the message printed.
+int finish_export(RunMcapFile& f, const ExportRequest& req, const nlohmann::json& log, std::int64_t last_tick,
+                  const char* what);
 
 }  // namespace gyrostab::tools

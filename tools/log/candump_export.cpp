@@ -251,17 +251,15 @@ int export_candump_log(const ExportRequest& req) {
     log["problem"] = problem;
     log["problem_offset"] = problem_offset;
   }
-  const std::uint16_t log_ch = f.add_json("/gyrostab/log", "gyrostab.log",
-                                          "the candump log exported: complete or not, its end of the run, frames "
-                                          "rejected by the decoder, or where it broke");
-  ok = ok && f.json(log_ch, last_tick < 0 ? 0 : last_tick, log);
   if (!ok) {
     std::fprintf(stderr, "gyrostab export: cannot write %s: a write failed\n", req.mcap_path.c_str());
     return 3;
   }
-  if (!f.commit(error)) {
-    std::fprintf(stderr, "gyrostab export: %s\n", error.c_str());
-    return 3;
+  if (const int rc = finish_export(f, req, log, last_tick,
+                                   "the candump log exported: complete or not, its end of the run, frames "
+                                   "rejected by the decoder, or where it broke");
+      rc != 0) {
+    return rc;
   }
   std::printf("%s: wrote %s: %lld ticks of %s's frames from the CAN bus (%s)\n", req.log_path.c_str(),
               req.mcap_path.c_str(), static_cast<long long>(written), device_name.c_str(),
