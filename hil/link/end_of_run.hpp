@@ -14,12 +14,17 @@
 
 namespace gyrostab::hil {
 
-inline msg::AnySensorFrame end_of_run_frame(std::int64_t tick, std::int64_t tick_ns, bool second_source) {
+// `last_sent_tick`: the latest tick whose sensor frame the plant published. A run stopped while waiting for a
+// command (a second source) has sent tick N's frame but not stepped N: the end frame is for N all the same, and
+// its sequence must still advance past that frame's, or the controller would refuse it as a repeat of tick N
+// with other contents.
+inline msg::AnySensorFrame end_of_run_frame(std::int64_t tick, std::int64_t tick_ns, bool second_source,
+                                            std::int64_t last_sent_tick = -1) {
   msg::AnySensorFrame end{};
   end.tick = static_cast<std::uint64_t>(tick);
   end.time_ns = tick * tick_ns;
   end.sample_time_ns = end.time_ns;
-  end.sequence = static_cast<std::uint32_t>(tick);
+  end.sequence = static_cast<std::uint32_t>(tick > last_sent_tick ? tick : last_sent_tick + 1);
   end.status = msg::bit(msg::SensorStatusBit::kEndOfRun) |
                (second_source ? msg::bit(msg::SensorStatusBit::kSecondSource) : 0u);
   return end;

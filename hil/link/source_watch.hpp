@@ -4,11 +4,16 @@
 // bound peer,
 //   - two frames for one tick with different contents (a resend repeats the frame byte for byte; a second
 //     source's frame for that tick differs), or
-//   - in lockstep, refused stale frames on kStaleTicks ticks in a row (a peer in lockstep sends each tick once,
-//     and resends only what it already sent: the genuine frames lose the race to a faster impostor's),
+//   - in lockstep, on kStaleTicks ticks in a row, a refused stale frame for one of the last kRecentTicks ticks
+//     whose contents differ from the frame accepted for that tick (a peer in lockstep sends each tick once and
+//     resends only what it already sent: when a faster impostor's frames are accepted, the genuine ones arrive
+//     a tick late with other contents),
 // concludes that two sources speak as one sender. The run then cannot stand: both ends end it with exit 7
 // naming what they saw (docs/protocol.md). With a key this never happens: a copier has no MAC.
-// O(1) per frame, no heap. Test: tests/unit/link_guard_test.cpp, tests/lcm/lcm_session_test.cpp.
+// Stale frames that are copies of what was accepted, or that are older than kRecentTicks, are counted by the
+// order checks but are no evidence: on a loaded machine a process that replays the bus late (or the peer's own
+// resends) delivers them in bursts, several on consecutive ticks, without any race being lost.
+// O(1) per frame, no heap. Tests: tests/unit/source_watch_test.cpp, tests/lcm/lcm_bad_messages_test.cpp.
 #pragma once
 
 #include <cstddef>
@@ -35,19 +40,22 @@ std::uint64_t frame_content_hash(const AnyFrame& f, std::size_t signals) {
 class SourceWatch {
  public:
   static constexpr int kStaleTicks = 8;
+  // A genuine frame that lost the race trails the accepted one by a tick; older stale frames are late copies.
+  static constexpr std::size_t kRecentTicks = 16;
 
   // A frame of the bound peer was accepted for `tick`.
   void accepted(std::uint64_t tick, std::uint64_t content) {
     have_ = true;
     tick_ = tick;
     content_ = content;
+    recent_[tick % kRecentTicks] = Recent{tick, content, true};
   }
   // A frame of the bound peer was refused by the order checks; `stale`: it was for an earlier tick.
   void refused(std::uint64_t tick, std::uint64_t content, bool stale) {
     if (have_ && tick == tick_ && content != content_ && conflict_tick_ < 0) {
       conflict_tick_ = static_cast<std::int64_t>(tick);
     }
-    if (stale) stale_this_tick_ = true;
+    if (stale && differs_from_accepted(tick, content)) stale_this_tick_ = true;
   }
   // The receiver's tick ends; `lockstep`: the stale-streak rule applies.
   void end_tick(std::int64_t tick, bool lockstep) {
@@ -62,6 +70,17 @@ class SourceWatch {
   std::int64_t stale_streak_tick() const { return streak_tick_; }
 
  private:
+  struct Recent {
+    std::uint64_t tick{0};
+    std::uint64_t content{0};
+    bool valid{false};
+  };
+  bool differs_from_accepted(std::uint64_t tick, std::uint64_t content) const {
+    const Recent& r = recent_[tick % kRecentTicks];
+    return r.valid && r.tick == tick && r.content != content;
+  }
+
+  Recent recent_[kRecentTicks]{};
   bool have_{false};
   std::uint64_t tick_{0};
   std::uint64_t content_{0};

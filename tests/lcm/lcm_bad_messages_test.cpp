@@ -217,6 +217,12 @@ TEST(LcmBadMessages, ACopierOfSessionAndSenderIsAHijackNeverASuccess) {
   EXPECT_NE(r["link"]["what_happened"].get<std::string>().find("hijacked: a second source sends as controller"),
             std::string::npos)
       << r["link"].dump();
+  // The plant stopped while waiting for a command: its end-of-run frame is for that tick, whose sensor frame
+  // was already sent, and the controller took it as the end (not as a second frame for that tick).
+  EXPECT_EQ(c["hijacked"]["evidence"], "the plant's end-of-run frame") << c.dump();
+  EXPECT_EQ(c["end_of_run"]["tick"], r["link"]["end_of_run"]["tick"]);
+  EXPECT_EQ(r["processes"]["what_happened"].get<std::string>().rfind("stopped on a second source", 0), 0u)
+      << r["processes"]["what_happened"];
 }
 
 }  // namespace

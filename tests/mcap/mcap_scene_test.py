@@ -18,6 +18,32 @@ import subprocess
 import sys
 import tomllib
 
+# A scene's run takes at most a few seconds and its readback less: a step still going after this has hung.
+STEP_TIMEOUT_S = 240
+
+
+def run_step(what, cmd, **kw):
+    """subprocess.run with STEP_TIMEOUT_S; a step that hangs is reported with its process state (R running,
+    S sleeping and where, T stopped by a signal) and what it printed so far, then killed."""
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kw)
+    try:
+        out, err = p.communicate(timeout=STEP_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        state = "?"
+        try:
+            with open(f"/proc/{p.pid}/stat") as f:
+                state = f.read().rsplit(")", 1)[1].split()[0]
+            with open(f"/proc/{p.pid}/wchan") as f:
+                state += " in " + (f.read() or "-")
+        except OSError:
+            pass
+        p.kill()
+        out, err = p.communicate()
+        print(out, err)
+        print(f"FAIL: {what} still running after {STEP_TIMEOUT_S} s (process state {state}): killed")
+        return None
+    return subprocess.CompletedProcess(cmd, p.returncode, out, err)
+
 # GYROSTAB_MCAP_MAX_TICKS=N caps every scene at N ticks (0, the default: the scene's full duration).
 MAX_TICKS = int(os.environ.get("GYROSTAB_MCAP_MAX_TICKS", "0"))
 
@@ -51,7 +77,9 @@ def main():
         if probe.returncode != 0:
             print("skip: no private network namespace here (unshare -n)")
             return 77
-    r = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=600)
+    r = run_step("gyrostab run", cmd, env=env)
+    if r is None:
+        return 1
     if r.returncode not in (0, 3):  # 3: a scene that ends in its safe state or diverges still writes its outputs
         print(r.stdout, r.stderr)
         print(f"FAIL: gyrostab run exited {r.returncode}")
@@ -65,10 +93,12 @@ def main():
         print(f"FAIL: temporary files left beside the MCAP file: {leftovers}")
         return 1
     here = os.path.dirname(os.path.abspath(__file__))
-    r = subprocess.run([node, os.path.join(here, "mcap_readback.cjs"), mcap, "--csv", os.path.join(out, "signals.csv"),
-                        "--report", os.path.join(out, "report.json"), "--frames-every", str(every)],
-                       env=dict(os.environ, NODE_PATH=node_modules),
-                       capture_output=True, text=True, timeout=600)
+    r = run_step("the readback (node)", [node, os.path.join(here, "mcap_readback.cjs"), mcap, "--csv",
+                                          os.path.join(out, "signals.csv"), "--report", os.path.join(out, "report.json"),
+                                          "--frames-every", str(every)],
+                 env=dict(os.environ, NODE_PATH=node_modules))
+    if r is None:
+        return 1
     print(r.stdout, r.stderr, end="")
     return r.returncode
 

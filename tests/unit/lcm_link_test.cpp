@@ -1,6 +1,7 @@
 // The pieces of the plant ⇄ controller link (the two-process LCM mode) without processes: the plant's
 // actuator-frame checks, the frame-order rules, the endpoint's codec-level counting over the in-memory bus,
-// the plant's lockstep wait (a bad command before the good one, a bad command alone, silence), the LCM
+// the plant's lockstep wait (a bad command before the good one, a bad command alone, silence, late
+// copies), the LCM
 // transport over memq:// (an oversize message is measured and refused, not truncated), the latency histogram
 // and the CLI parsers.
 #include <gtest/gtest.h>
@@ -217,6 +218,36 @@ TEST(PlantLockstepWait, SilenceIsTheControllerLostAfterResends) {
   w.e.plant.send(msg::SensorFrame{}, 0);  // what the resends repeat
   ASSERT_EQ(w.run(100'000'000), tools::CommandWait::kLost);
   EXPECT_GE(w.e.plant.counters().resent, 2u);  // every 30 ms within 100 ms
+}
+
+// Every tick, before the command, a copy of the command of two ticks ago arrives (a process replaying the bus
+// late): refused as stale and counted, but no evidence of a second source while it repeats what was accepted;
+// with other contents on 8 ticks in a row it is one (the genuine frames losing the race to a faster copier).
+int lockstep_ticks_until_hijack(bool copies_differ) {
+  Ends e;
+  hil::FrameOrder order;
+  tools::LinkSettings s;
+  s.resend_ns = 30'000'000;
+  hil::SourceWatch watch;
+  for (std::uint64_t k = 0; k < 40; ++k) {
+    if (k >= 2) e.controller.send(command(k - 2, copies_differ ? 3.0 : 1.0), 0);
+    e.controller.send(command(k), 0);
+    msg::AnyActuatorFrame any{};
+    const tools::CommandWait w =
+        tools::wait_for_command(e.plant, order, hil::ActuatorLimits{}, msg::kSignals, static_cast<std::int64_t>(k),
+                                hil::kNoDeadline, true, hil::monotonic_ns() + 2'000'000'000, s, any, watch);
+    EXPECT_EQ(w, tools::CommandWait::kAccepted) << "tick " << k;
+    if (k == 0) e.plant.bind_to_last();
+    watch.end_tick(static_cast<std::int64_t>(k), true);
+    if (watch.hijacked()) return static_cast<int>(k);
+  }
+  EXPECT_EQ(e.plant.counters().rejected_stale, 38u);
+  return -1;
+}
+
+TEST(PlantLockstepWait, LateCopiesOnEveryTickAreStaleButNotASecondSource) {
+  EXPECT_EQ(lockstep_ticks_until_hijack(false), -1);
+  EXPECT_EQ(lockstep_ticks_until_hijack(true), 2 + hil::SourceWatch::kStaleTicks - 1);
 }
 
 TEST(LcmTransport, MemqDeliversWholeMessagesAndMeasuresAnOversizeOne) {

@@ -392,7 +392,7 @@ int run_controller_over(const DeviceScene& scene, const RunRequest& req, Transpo
                          "the controller stopped there");
     l["hijacked"] = {{"tick", link.hijack_tick},
                      {"evidence", link.hijack_seen_by_plant ? "the plant's end-of-run frame"
-                                  : link.hijack_by_stale_run ? "stale frames every tick"
+                                  : link.hijack_by_stale_run ? "stale frames of other contents on 8 ticks in a row"
                                                              : "two frames for one tick"}};
   } else if (link.peer_lost) {
     happened = "plant lost: no sensor frame for tick " + std::to_string(link.lost_at_tick) + " within " +

@@ -97,9 +97,9 @@ struct PlantLinkOutcome {
 // resend interval until the controller acknowledges it (an actuator frame of that tick with kEndOfRun) or the
 // receive timeout passes. The controller stops on it; it never has to know the run's length.
 template <class Transport>
-void send_end_of_run(hil::FrameEndpoint<Transport>& ep, std::int64_t tick, const LoopConfig& cfg,
-                     const LinkSettings& s, PlantLinkOutcome& link, bool second_source) {
-  const msg::AnySensorFrame end = hil::end_of_run_frame(tick, cfg.tick_ns, second_source);
+void send_end_of_run(hil::FrameEndpoint<Transport>& ep, std::int64_t tick, std::int64_t last_sent_tick,
+                     const LoopConfig& cfg, const LinkSettings& s, PlantLinkOutcome& link, bool second_source) {
+  const msg::AnySensorFrame end = hil::end_of_run_frame(tick, cfg.tick_ns, second_source, last_sent_tick);
   link.end_tick = tick;
   if (!ep.send(end, tick * cfg.tick_ns / 1000)) return;
   const std::int64_t give_up = hil::monotonic_ns() + s.timeout_ns;
@@ -145,6 +145,7 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
   std::int64_t last_heard = hil::monotonic_ns();
   std::int64_t missing_in_a_row = 0;
   std::int64_t stop_after = std::numeric_limits<std::int64_t>::max();
+  std::int64_t last_sent_tick = -1;
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t k = 0; k < ticks && k <= stop_after; ++k) {
     if (sink != nullptr && sink->stop_requested()) {
@@ -179,6 +180,7 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
       ++ep.counters().dropped_by_fault;
     } else {
       ep.send(published, sim_us);
+      last_sent_tick = k;
     }
 
     // The exchange: the command of tick k, or the watchdog's.
@@ -256,7 +258,7 @@ LoopOutcome run_plant_loop(PlantPort& plant_port, const hil::ActuatorLimits& lim
   if constexpr (!std::is_same_v<Transport, hil::TargetBus>) {
     // After a hijack too: the genuine controller learns why its run ends (it may not see the second source).
     if (!link.peer_lost && !link.transport_error && ep.guard().bound()) {
-      send_end_of_run(ep, out.ticks_run, cfg, s, link, link.hijack_tick >= 0);
+      send_end_of_run(ep, out.ticks_run, last_sent_tick, cfg, s, link, link.hijack_tick >= 0);
     }
   }
   return out;
@@ -361,7 +363,7 @@ int run_plant_over(const DeviceScene& scene, const RunRequest& req, Transport& t
     happened = hijack_message("controller", ep.guard().peer(), link.hijack_by_stale_run, link.hijack_tick,
                               "commands", "the run was stopped there: its results are not the loop's");
     l["hijacked"] = {{"tick", link.hijack_tick},
-                     {"evidence", link.hijack_by_stale_run ? "stale frames every tick" : "two commands for one tick"}};
+                     {"evidence", link.hijack_by_stale_run ? "stale frames of other contents on 8 ticks in a row" : "two commands for one tick"}};
   } else if (link.peer_lost) {
     happened = "controller lost: no actuator frame for tick " + std::to_string(link.lost_at_tick) + " within " +
                std::to_string(link.silent_ns / 1'000'000) + " ms; drives at zero torque from tick " +

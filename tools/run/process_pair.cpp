@@ -252,8 +252,15 @@ int run_process_pair(const RunRequest& req) {
   std::string happened;
   const auto completed = [](const Child& c) { return c.exited() && (c.code() == 0 || c.code() == kExitForeignFrames); };
   bool foreign = false;
+  // Exit 7 is also a second source on the link: that run was stopped, it did not complete.
+  const bool hijacked = (have_plant && report.contains("link") && report["link"].contains("hijacked")) ||
+                        (have_ctl && ctl.contains("link") && ctl["link"].contains("hijacked"));
   if (plant.exited() && controller.exited() && plant.code() == 0 && controller.code() == 0) {
     happened = "completed";
+  } else if (hijacked) {
+    happened = "stopped on a second source: plant: " +
+               (have_plant && report.contains("link") ? report["link"].value("what_happened", "") : plant.how()) +
+               "; controller: " + (have_ctl && ctl.contains("link") ? ctl["link"].value("what_happened", "") : controller.how());
   } else if (completed(plant) && completed(controller)) {
     foreign = true;
     happened = "completed; frames of another session, recorded frames or frames that failed authentication were on "
