@@ -26,8 +26,6 @@ using can::CanRx;
 using can::SocketCan;
 using can::SocketCanConfig;
 
-constexpr std::int64_t kNoDeadline = std::numeric_limits<std::int64_t>::max();
-
 std::int64_t mono_ns(clockid_t c = CLOCK_MONOTONIC) {
   timespec ts{};
   clock_gettime(c, &ts);
