@@ -54,8 +54,9 @@ inline nlohmann::json counters_json(const hil::LinkCounters& c) {
 inline std::string hijack_message(const char* as_whom, std::uint64_t peer, bool by_stale_run, std::int64_t tick,
                                   const char* frames, const char* what_was_done) {
   return std::string("hijacked: a second source sends as ") + as_whom + " " + format_link_id(peer) +
-         (by_stale_run ? " (its frames were refused as stale on " + std::to_string(hil::SourceWatch::kStaleTicks) +
-                             " ticks in a row up to tick " + std::to_string(tick) + ")"
+         (by_stale_run ? " (stale frames contradicting the accepted ones on " +
+                             std::to_string(hil::SourceWatch::kStaleTicks) + " ticks in a row up to tick " +
+                             std::to_string(tick) + ")"
                        : std::string(" (two different ") + frames + " for tick " + std::to_string(tick) + ")") +
          "; " + what_was_done + " (without a link key anyone who reads the bus can copy the ids: use --key-file)";
 }
