@@ -257,16 +257,13 @@ int run_process_pair(const RunRequest& req) {
                         (have_ctl && ctl.contains("link") && ctl["link"].contains("hijacked"));
   if (plant.exited() && controller.exited() && plant.code() == 0 && controller.code() == 0) {
     happened = "completed";
-  } else if (hijacked) {
-    happened = "stopped on a second source: plant: " +
-               (have_plant && report.contains("link") ? report["link"].value("what_happened", "") : plant.how()) +
-               "; controller: " + (have_ctl && ctl.contains("link") ? ctl["link"].value("what_happened", "") : controller.how());
-  } else if (completed(plant) && completed(controller)) {
+  } else if (completed(plant) && completed(controller) && !hijacked) {
     foreign = true;
     happened = "completed; frames of another session, recorded frames or frames that failed authentication were on "
                "the link and refused, none acted on (link.session.refused, controller_process.link.session.refused)";
   } else {
-    happened = plant.how() + ", " + controller.how();
+    happened = (hijacked ? std::string("stopped on a second source: ") : std::string()) + plant.how() + ", " +
+               controller.how();
     if (have_plant && report.contains("link"))
       happened += "; plant: " + report["link"].value("what_happened", "");
     if (have_ctl && ctl.contains("link"))
