@@ -1,6 +1,9 @@
 #include "hil/lcm/log_event_codec.hpp"
 
+#include <cstddef>
+#include <cstdint>
 #include <exception>
+#include <string>
 
 #include <gyrostab_msg/log_end_t.hpp>
 #include <gyrostab_msg/scene_t.hpp>
@@ -40,10 +43,71 @@ std::vector<std::uint8_t> encode_message(Msg& m) {
   return buf;
 }
 
-// lcm-gen's decoder trusts a string's length field far enough to throw std::length_error on a zero or
-// negative one; a corrupt log must be refused, not thrown through the replay.
-template <class Msg>
-bool decode_message(const void* data, int size, Msg& m, std::string& why) {
+// lcm-gen's decoder checks a string's length field only against the bytes left: a zero or negative one
+// reaches std::string::assign as length - 1 (INT32_MIN - 1 overflows and would read 2 GiB past the event).
+// So each type's encoding is walked first, field by field as its .lcm file declares them, and a string whose
+// length field is not 1..(bytes left) is refused before lcm-gen's code sees it. A field added to the .lcm file
+// and not here makes every event fail the walk, which the log round-trip tests catch.
+enum class Field : std::uint8_t { kI32, kI64, kString };
+
+constexpr Field kSceneFields[] = {Field::kI32, Field::kString, Field::kString, Field::kI64,
+                                  Field::kI64, Field::kString, Field::kString, Field::kI64};
+constexpr Field kEndFields[] = {Field::kI64, Field::kI32, Field::kI32, Field::kString, Field::kI64};
+
+constexpr int kFingerprintBytes = 8;
+
+std::int32_t big_endian_i32(const std::uint8_t* p) {
+  return static_cast<std::int32_t>((std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) |
+                                   (std::uint32_t{p[2]} << 8) | std::uint32_t{p[3]});
+}
+
+template <std::size_t N>
+bool walk_fields(const std::uint8_t* data, int size, const Field (&fields)[N], const char* type,
+                 std::string& why) {
+  int pos = kFingerprintBytes;
+  for (std::size_t i = 0; i < N; ++i) {
+    const int fixed = fields[i] == Field::kI64 ? 8 : 4;
+    if (size - pos < fixed) {
+      why = std::string(type) + " ends inside field " + std::to_string(i + 1) + " of " + std::to_string(N) +
+            " (" + std::to_string(size) + " bytes)";
+      return false;
+    }
+    if (fields[i] == Field::kString) {
+      const std::int32_t len = big_endian_i32(data + pos);
+      if (len < 1 || len > size - pos - fixed) {
+        why = std::string(type) + ": string field " + std::to_string(i + 1) + " at byte " + std::to_string(pos) +
+              " has length " + std::to_string(len) + " (1 to " + std::to_string(size - pos - fixed) +
+              " possible, its terminating zero included)";
+        return false;
+      }
+      pos += len;
+    }
+    pos += fixed;
+  }
+  if (pos != size) {
+    why = std::string(type) + " takes " + std::to_string(pos) + " of the event's " + std::to_string(size) +
+          " bytes";
+    return false;
+  }
+  return true;
+}
+
+// lcm-gen's decoder also throws std::length_error on some lengths it does not check; a corrupt log must be
+// refused, not thrown through the replay.
+template <class Msg, std::size_t N>
+bool decode_message(const void* data, int size, const Field (&fields)[N], Msg& m, std::string& why) {
+  const auto* bytes = static_cast<const std::uint8_t*>(data);
+  if (size < kFingerprintBytes) {
+    why = "an event of " + std::to_string(size) + " bytes is shorter than a type fingerprint";
+    return false;
+  }
+  std::uint64_t fingerprint = 0;
+  for (int i = 0; i < kFingerprintBytes; ++i) fingerprint = (fingerprint << 8) | bytes[i];
+  if (fingerprint != static_cast<std::uint64_t>(Msg::getHash())) {
+    why = "not a " + std::string(Msg::getTypeName()) + " (wrong type fingerprint)";
+    return false;
+  }
+  if (!walk_fields(bytes, size, fields, Msg::getTypeName(), why)) return false;
   int n = -1;
   try {
     n = m.decode(data, 0, size);
@@ -93,7 +157,7 @@ std::vector<std::uint8_t> encode(const EndEvent& e) {
 
 bool decode(const void* data, int size, SceneEvent& out, std::string& why) {
   gyrostab_msg::scene_t m;
-  if (!decode_message(data, size, m, why)) return false;
+  if (!decode_message(data, size, kSceneFields, m, why)) return false;
   if (m.log_version != kLogVersion) {
     why = "log version " + std::to_string(m.log_version) + " (this build reads version " +
           std::to_string(kLogVersion) +
@@ -119,7 +183,7 @@ bool decode(const void* data, int size, SceneEvent& out, std::string& why) {
 
 bool decode(const void* data, int size, EndEvent& out, std::string& why) {
   gyrostab_msg::log_end_t m;
-  if (!decode_message(data, size, m, why)) return false;
+  if (!decode_message(data, size, kEndFields, m, why)) return false;
   if (m.reason < 0 || m.reason > static_cast<std::int32_t>(EndReason::kOther)) {
     why = "unknown end reason " + std::to_string(m.reason);
     return false;
