@@ -2,33 +2,20 @@
 
 #include <sys/random.h>
 
-#include <boost/asio.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/http.hpp>
-#include <boost/beast/websocket.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <deque>
-#include <fstream>
 #include <mutex>
-#include <set>
-#include <sstream>
 #include <thread>
 #include <vector>
 
 #include "tools/build_paths.hpp"
 #include "tools/view/view_meta.hpp"
+#include "tools/view/view_server_impl.hpp"
 #include "tools/view/view_store.hpp"
 
 namespace gyrostab::tools::view {
-
-namespace asio = boost::asio;
-namespace beast = boost::beast;
-namespace http = beast::http;
-namespace websocket = beast::websocket;
-using tcp = asio::ip::tcp;
 
 std::string parse_view_address(const std::string& text, ViewOptions& out) {
   ViewOptions o;
@@ -81,262 +68,10 @@ std::string random_token() {
 std::string view_web_dir() { return std::string(build_source_dir()) + "/tools/view/web"; }
 std::string view_uplot_dir() { return std::string(build_npm_dir()) + "/uplot/dist"; }
 
-namespace {
-
-bool same_token(const std::string& a, const std::string& b) {
-  if (a.size() != b.size()) return false;
-  unsigned char d = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) d |= static_cast<unsigned char>(a[i] ^ b[i]);
-  return d == 0;
-}
-
-std::string query_value(std::string_view target, std::string_view key) {
-  const auto q = target.find('?');
-  if (q == std::string_view::npos) return "";
-  std::string_view rest = target.substr(q + 1);
-  while (!rest.empty()) {
-    const auto amp = rest.find('&');
-    const std::string_view pair = rest.substr(0, amp);
-    const auto eq = pair.find('=');
-    if (eq != std::string_view::npos && pair.substr(0, eq) == key) return std::string(pair.substr(eq + 1));
-    if (amp == std::string_view::npos) break;
-    rest = rest.substr(amp + 1);
-  }
-  return "";
-}
-
-std::string read_file(const std::string& path, bool& ok) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  ok = static_cast<bool>(f);
-  return s.str();
-}
-
-struct Asset {
-  const char* path;
-  const char* file;
-  const char* type;
-  bool uplot;
-};
-constexpr Asset kAssets[] = {
-    {"/", "index.html", "text/html; charset=utf-8", false},  // or the snapshot view's page
-    {"/view.js", "view.js", "text/javascript; charset=utf-8", false},
-    {"/sweep.js", "sweep.js", "text/javascript; charset=utf-8", false},
-    {"/view.css", "view.css", "text/css; charset=utf-8", false},
-    {"/uPlot.iife.min.js", "uPlot.iife.min.js", "text/javascript; charset=utf-8", true},
-    {"/uPlot.min.css", "uPlot.min.css", "text/css; charset=utf-8", true},
-};
-
-}  // namespace
-
-struct WsSession;
-
-struct ViewServer::Impl {
-  asio::io_context io;
-  tcp::acceptor acceptor{io};
-  asio::steady_timer timer{io};
-  std::thread thread;
-  std::string token;
-  std::string host_port;           // as the URL names it
-  std::set<std::string> hosts;     // Host header values accepted
-  bool any_host{false};            // bound to a wildcard address: any Host, the token decides
-  bool rows_mode{false};           // a run's (or a bus's) rows, not snapshots
-  std::vector<std::unique_ptr<ViewStore>> stores;  // one per channel
-  ViewRun run;
-  std::string meta;                // the meta message, serialised when the channels' spans change
-  std::string page{"index.html"};  // what "/" serves
-  // Snapshot mode (no ring): the latest state and its version, set by publish() from any thread.
-  std::mutex snap_mutex;
-  std::string snapshot;
-  std::uint64_t snap_version{0};
-  std::vector<std::weak_ptr<WsSession>> sessions;
-  std::string end_message;         // set when the run ended
-  int frame{0};
-  // Rates: ticks per wall second over the last half second or more.
-  std::chrono::steady_clock::time_point rate_t0{};
-  std::int64_t rate_tick0{0};
-  double ticks_per_s{0};
-  std::atomic<int> pages{0}, pages_ended{0};
-
-  void accept();
-  void tick();
-  bool drain();  // true when a store's span changed (a new meta message is due)
-  void make_meta();
-  std::int64_t last_tick() const;
-  nlohmann::json data_message(const std::vector<std::int64_t>& from) const;
-  bool host_ok(const std::string& host) const {
-    return any_host || hosts.count(host) != 0;
-  }
-};
-
-struct WsSession : std::enable_shared_from_this<WsSession> {
-  websocket::stream<beast::tcp_stream> ws;
-  ViewServer::Impl& server;
-  beast::flat_buffer in;
-  std::deque<std::string> out;  // at most a meta, a data and an end message wait
-  bool writing{false};
-  bool open{false};
-  bool got_end{false};
-  std::vector<std::int64_t> next_bucket;  // per channel
-  std::uint64_t snap_seen{0};
-  http::request<http::string_body> upgrade;  // kept until the handshake completes
-
-  WsSession(tcp::socket&& s, ViewServer::Impl& srv) : ws(std::move(s)), server(srv) {}
-
-  void accept(http::request<http::string_body> req) {
-    ws.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
-    ws.set_option(websocket::stream_base::decorator(
-        [](websocket::response_type& res) { res.set(http::field::server, "gyrostab-view"); }));
-    ws.read_message_max(4096);
-    upgrade = std::move(req);
-    ws.async_accept(upgrade, [self = shared_from_this()](beast::error_code ec) {
-      if (ec) return;
-      self->open = true;
-      ++self->server.pages;
-      self->next_bucket.assign(self->server.stores.size(), 0);
-      self->send(self->server.meta);
-      self->read();
-    });
-  }
-  // The page may only close: a message from it is taken as a command, which the view does not accept.
-  void read() {
-    ws.async_read(in, [self = shared_from_this()](beast::error_code ec, std::size_t) {
-      if (ec) {
-        self->closed();
-        return;
-      }
-      self->ws.async_close(websocket::close_reason(websocket::close_code::policy_error, "the view accepts no command"),
-                           [self](beast::error_code) { self->closed(); });
-    });
-  }
-  void closed() {
-    if (open) --server.pages;
-    open = false;
-  }
-  bool idle() const { return open && !writing && out.empty(); }
-  void send(std::string msg) {
-    out.push_back(std::move(msg));
-    if (!writing) write_next();
-  }
-  void write_next() {
-    if (out.empty() || !open) {
-      writing = false;
-      return;
-    }
-    writing = true;
-    ws.text(true);
-    ws.async_write(asio::buffer(out.front()), [self = shared_from_this()](beast::error_code ec, std::size_t) {
-      self->out.pop_front();
-      if (ec) {
-        self->writing = false;
-        self->closed();
-        return;
-      }
-      self->write_next();
-    });
-  }
-};
-
-struct HttpSession : std::enable_shared_from_this<HttpSession> {
-  beast::tcp_stream stream;
-  ViewServer::Impl& server;
-  beast::flat_buffer buffer;
-  http::request<http::string_body> req;
-
-  HttpSession(tcp::socket&& s, ViewServer::Impl& srv) : stream(std::move(s)), server(srv) {}
-
-  void read() {
-    req = {};
-    stream.expires_after(std::chrono::seconds(30));
-    http::async_read(stream, buffer, req, [self = shared_from_this()](beast::error_code ec, std::size_t) {
-      if (ec) {
-        beast::error_code ignored;
-        self->stream.socket().shutdown(tcp::socket::shutdown_send, ignored);
-        return;
-      }
-      self->handle();
-    });
-  }
-
-  void reply(http::status status, std::string body, const char* type) {
-    auto res = std::make_shared<http::response<http::string_body>>(status, req.version());
-    res->set(http::field::server, "gyrostab-view");
-    res->set(http::field::content_type, type);
-    res->set(http::field::cache_control, "no-store");
-    res->set("X-Content-Type-Options", "nosniff");
-    res->set("Referrer-Policy", "no-referrer");  // the token stays out of any Referer
-    res->set("X-Frame-Options", "DENY");
-    res->set("Content-Security-Policy",
-             "default-src 'self'; connect-src 'self'; img-src 'self' data:; style-src 'self' 'unsafe-inline'");
-    res->keep_alive(req.keep_alive());
-    res->body() = std::move(body);
-    res->prepare_payload();
-    http::async_write(stream, *res, [self = shared_from_this(), res](beast::error_code ec, std::size_t) {
-      if (ec || !res->keep_alive()) {
-        beast::error_code ignored;
-        self->stream.socket().shutdown(tcp::socket::shutdown_send, ignored);
-        return;
-      }
-      self->read();
-    });
-  }
-
-  void handle() {
-    const std::string target(req.target());
-    const std::string path = target.substr(0, target.find('?'));
-    if (!server.host_ok(std::string(req[http::field::host]))) {
-      reply(http::status::forbidden, "forbidden: unknown Host\n", "text/plain");
-      return;
-    }
-    const bool token_ok = same_token(query_value(target, "token"), server.token);
-    if (websocket::is_upgrade(req)) {
-      const std::string origin(req[http::field::origin]);
-      const std::string own = "http://" + std::string(req[http::field::host]);
-      if (path != "/ws" || !token_ok || origin != own) {
-        reply(http::status::forbidden, "forbidden: wrong token or origin\n", "text/plain");
-        return;
-      }
-      // Registered on the server's own thread (this one), read by tick().
-      server.sessions.erase(std::remove_if(server.sessions.begin(), server.sessions.end(),
-                                           [](const std::weak_ptr<WsSession>& w) { return w.expired(); }),
-                            server.sessions.end());
-      auto ws = std::make_shared<WsSession>(stream.release_socket(), server);
-      server.sessions.push_back(ws);
-      ws->accept(std::move(req));
-      return;
-    }
-    if (req.method() != http::verb::get) {
-      reply(http::status::method_not_allowed, "only GET\n", "text/plain");
-      return;
-    }
-    for (const Asset& a : kAssets) {
-      if (path != a.path) continue;
-      if (path == "/" && !token_ok) {
-        reply(http::status::forbidden, "forbidden: open the URL gyrostab printed, with its token\n", "text/plain");
-        return;
-      }
-      bool ok = false;
-      const std::string file = path == "/" ? server.page : a.file;
-      std::string body = read_file((a.uplot ? view_uplot_dir() : view_web_dir()) + "/" + file, ok);
-      if (!ok) {
-        reply(http::status::not_found,
-              std::string(a.file) + " not found" + (a.uplot ? " (uPlot: run tools/setup, which installs it)" : "") + "\n",
-              "text/plain");
-        return;
-      }
-      reply(http::status::ok, std::move(body), a.type);
-      return;
-    }
-    reply(http::status::not_found, "not found\n", "text/plain");
-  }
-};
-
 void ViewServer::Impl::accept() {
   acceptor.async_accept([this](beast::error_code ec, tcp::socket s) {
     if (ec) return;  // closed
-    auto h = std::make_shared<HttpSession>(std::move(s), *this);
-    h->read();
+    serve_http(std::move(s), *this);
     accept();
   });
 }

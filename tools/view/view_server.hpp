@@ -82,7 +82,7 @@ class ViewServer {
   int pages_ended() const;
   void stop();
 
-  struct Impl;  // the server's state, on its thread (view_server.cpp)
+  struct Impl;  // the server's state, on its thread (view_server_impl.hpp)
 
  private:
   bool listen(const ViewOptions& options, std::string& error);
