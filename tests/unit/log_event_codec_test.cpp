@@ -85,21 +85,19 @@ TEST(LogEventCodec, EveryBadStringLengthIsRefusedWithItsField) {
   }
 }
 
+template <class Event>
+void expect_every_truncation_refused(const std::vector<std::uint8_t>& bytes) {
+  for (std::size_t n = 0; n < bytes.size(); ++n) {
+    Event out;
+    std::string why;
+    EXPECT_FALSE(hil::decode(bytes.data(), static_cast<int>(n), out, why)) << n;
+    EXPECT_FALSE(why.empty()) << n;
+  }
+}
+
 TEST(LogEventCodec, EveryTruncationIsRefused) {
-  const std::vector<std::uint8_t> s = hil::encode(a_scene());
-  for (std::size_t n = 0; n < s.size(); ++n) {
-    hil::SceneEvent out;
-    std::string why;
-    EXPECT_FALSE(hil::decode(s.data(), static_cast<int>(n), out, why)) << n;
-    EXPECT_FALSE(why.empty()) << n;
-  }
-  const std::vector<std::uint8_t> e = hil::encode(an_end());
-  for (std::size_t n = 0; n < e.size(); ++n) {
-    hil::EndEvent out;
-    std::string why;
-    EXPECT_FALSE(hil::decode(e.data(), static_cast<int>(n), out, why)) << n;
-    EXPECT_FALSE(why.empty()) << n;
-  }
+  expect_every_truncation_refused<hil::SceneEvent>(hil::encode(a_scene()));
+  expect_every_truncation_refused<hil::EndEvent>(hil::encode(an_end()));
 }
 
 TEST(LogEventCodec, AnEndEventIsNotASceneEvent) {
